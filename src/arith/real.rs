@@ -1,0 +1,156 @@
+//! The number trait of coefficient fields: `f64`, inari `Interval` (and later MPFR intervals).
+//!
+//! A [`Real`] is a number that can stand for a parameter of a model (B, Γ, κ, σ, n, p) or for a
+//! Taylor coefficient. Every operation of an interval implementation must enclose the exact
+//! real result for every point of its arguments; the `f64` implementation rounds to nearest.
+
+use std::fmt::Debug;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A field of numbers the models can be evaluated over.
+///
+/// | method | meaning | domain |
+/// |---|---|---|
+/// | `pow(y)` | x^y | x > 0 (x ≥ 0 when y > 0) |
+/// | `spow(q)` | signed power \|x\|^(q−1)·x | q > 0 (0 at x = 0) |
+/// | `apow(q)` | \|x\|^q | q ≥ 1 |
+pub trait Real:
+    Clone
+    + Debug
+    + Send
+    + Sync
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + 'static
+{
+    /// A small integer, exactly (|k| ≤ 2^53).
+    fn from_int(k: i64) -> Self;
+    /// An `f64` that is *exactly* the intended value (a grid point, a value computed in f64 on
+    /// purpose). Never use it for a decimal the user wrote: see [`Real::parse_decimal`].
+    fn from_exact_f64(x: f64) -> Self;
+    /// The decimal literal `s` (e.g. `"0.632"`, `"1e-3"`) or a range `"a..b"`, enclosed as
+    /// written: for intervals the tightest enclosure of the decimal value (of the whole range),
+    /// for `f64` the nearest double (a range is refused).
+    fn parse_decimal(s: &str) -> Result<Self, String>;
+    fn zero() -> Self {
+        Self::from_int(0)
+    }
+    fn one() -> Self {
+        Self::from_int(1)
+    }
+    fn abs(&self) -> Self;
+    fn sqrt(&self) -> Self;
+    /// x^y for x > 0.
+    fn pow(&self, y: &Self) -> Self;
+    /// The signed power |x|^(q−1)·x, q ≥ 1 (the Hertzian law's nonlinearity).
+    fn spow(&self, q: &Self) -> Self;
+    /// |x|^q, q ≥ 1.
+    fn apow(&self, q: &Self) -> Self;
+    /// Lower bound of the value (the value itself for `f64`).
+    fn lo(&self) -> f64;
+    /// Upper bound of the value (the value itself for `f64`).
+    fn hi(&self) -> f64;
+    /// A representative point (the midpoint for intervals).
+    fn mid(&self) -> f64;
+    /// True when the value is a finite number (or a bounded, non-empty interval).
+    fn is_finite(&self) -> bool {
+        self.lo().is_finite() && self.hi().is_finite()
+    }
+    /// +1 or −1 when every value is > 0 or < 0; `None` when the sign is not certain (0 included).
+    fn sign(&self) -> Option<i8> {
+        if self.lo() > 0.0 {
+            Some(1)
+        } else if self.hi() < 0.0 {
+            Some(-1)
+        } else {
+            None
+        }
+    }
+    /// A value that encloses every real (NaN for `f64`): the honest result of an expansion
+    /// that does not exist.
+    fn unbounded() -> Self;
+    /// True when every value is an integer k with known parity (used to pick the analytic
+    /// branch: |x|^(q−1)x = x^q for odd integer q, |x|^q = x^q for even integer q).
+    fn as_integer(&self) -> Option<i64> {
+        let (l, h) = (self.lo(), self.hi());
+        if l == h && l.fract() == 0.0 && l.abs() < 1e15 {
+            Some(l as i64)
+        } else {
+            None
+        }
+    }
+}
+
+impl Real for f64 {
+    #[inline]
+    fn from_int(k: i64) -> Self {
+        k as f64
+    }
+    #[inline]
+    fn from_exact_f64(x: f64) -> Self {
+        x
+    }
+    fn parse_decimal(s: &str) -> Result<Self, String> {
+        let t = s.trim();
+        if t.contains("..") {
+            return Err(format!("a range ({t}) needs the rigorous engine"));
+        }
+        let x: f64 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
+        if !x.is_finite() {
+            return Err(format!("'{t}' is not a finite number"));
+        }
+        Ok(x)
+    }
+    fn unbounded() -> Self {
+        f64::NAN
+    }
+    #[inline]
+    fn abs(&self) -> Self {
+        f64::abs(*self)
+    }
+    #[inline]
+    fn sqrt(&self) -> Self {
+        f64::sqrt(*self)
+    }
+    #[inline]
+    fn pow(&self, y: &Self) -> Self {
+        self.powf(*y)
+    }
+    #[inline]
+    fn spow(&self, q: &Self) -> Self {
+        if *q == 1.0 {
+            *self
+        } else if *q == 2.0 {
+            self.abs() * self
+        } else if *self == 0.0 {
+            0.0
+        } else {
+            self.abs().powf(q - 1.0) * self
+        }
+    }
+    #[inline]
+    fn apow(&self, q: &Self) -> Self {
+        if *q == 1.0 {
+            self.abs()
+        } else if *q == 2.0 {
+            self * self
+        } else {
+            self.abs().powf(*q)
+        }
+    }
+    #[inline]
+    fn lo(&self) -> f64 {
+        *self
+    }
+    #[inline]
+    fn hi(&self) -> f64 {
+        *self
+    }
+    #[inline]
+    fn mid(&self) -> f64 {
+        *self
+    }
+}

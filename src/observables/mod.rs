@@ -1,0 +1,13 @@
+//! Observables layer: the separation time T_s, the coefficient of restitution e, trajectories
+//! and hysteresis loops, with the paper's exact definitions.
+//!
+//! - [`separation`]: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0} (eq:main_t_s) and e = V(T_s)
+//!   (eq:main_cor) on the f64 engine's dense output;
+//! - [`trajectory`]: sampled trajectories and loops (F against X), nondimensional or physical;
+//! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine.
+
+pub mod rigorous;
+pub mod separation;
+pub mod trajectory;
+
+pub use separation::{FloatOptions, Impact, ImpactError, impact};
