@@ -141,16 +141,74 @@ mod tests {
         let q = 1.7;
         for x in [-2.0_f64, -0.3, 0.4, 3.0] {
             let d = Dual::<f64, 1>::variable(x, 0);
-            let s = d.spow(&q);
+            let s = Scalar::<f64>::spow(&d, &q);
             assert!((s.d[0] - q * x.abs().powf(q - 1.0)).abs() < 1e-14);
-            let a = d.apow(&q);
+            let a = Scalar::<f64>::apow(&d, &q);
             assert!(
                 (a.d[0] - q * x.abs().powf(q - 1.0) * x.signum()).abs() < 1e-14,
                 "{x}"
             );
-            let b = (d.clone() * d.clone() / d.shift(&1.0)).d[0];
+            let b = (d.clone() * d.clone() / Scalar::<f64>::shift(&d, &1.0)).d[0];
             let e = (2.0 * x * (x + 1.0) - x * x) / ((x + 1.0) * (x + 1.0));
             assert!((b - e).abs() < 1e-13);
         }
+    }
+}
+
+/// Duals over a field are a field for the tape's recurrences: exponents (the models' n, p) are
+/// constants, so `pow`/`spow`/`apow` differentiate in the base only (a non-constant exponent
+/// gives an unbounded derivative, never a wrong one).
+impl<R: Real, const M: usize> Real for Dual<R, M> {
+    fn from_int(k: i64) -> Self {
+        Self::constant(R::from_int(k))
+    }
+    fn from_exact_f64(x: f64) -> Self {
+        Self::constant(R::from_exact_f64(x))
+    }
+    fn parse_decimal(s: &str) -> Result<Self, String> {
+        R::parse_decimal(s).map(Self::constant)
+    }
+    fn unbounded() -> Self {
+        Self { v: R::unbounded(), d: std::array::from_fn(|_| R::unbounded()) }
+    }
+    fn abs(&self) -> Self {
+        <Self as Scalar<R>>::abs(self)
+    }
+    fn sqrt(&self) -> Self {
+        let s = self.v.sqrt();
+        let ds = R::one() / (R::from_int(2) * s.clone());
+        self.chain(s, ds)
+    }
+    fn pow(&self, y: &Self) -> Self {
+        if !y.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
+            return Self::unbounded();
+        }
+        // d/dx x^y = y x^(y−1)
+        let dq = y.v.clone() * self.v.pow(&(y.v.clone() - R::one()));
+        self.chain(self.v.pow(&y.v), dq)
+    }
+    fn spow(&self, q: &Self) -> Self {
+        if !q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
+            return Self::unbounded();
+        }
+        <Self as Scalar<R>>::spow(self, &q.v)
+    }
+    fn apow(&self, q: &Self) -> Self {
+        if !q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
+            return Self::unbounded();
+        }
+        <Self as Scalar<R>>::apow(self, &q.v)
+    }
+    fn lo(&self) -> f64 {
+        self.v.lo()
+    }
+    fn hi(&self) -> f64 {
+        self.v.hi()
+    }
+    fn mid(&self) -> f64 {
+        self.v.mid()
+    }
+    fn is_finite(&self) -> bool {
+        self.v.is_finite() && self.d.iter().all(|c| c.is_finite())
     }
 }

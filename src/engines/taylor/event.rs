@@ -1,0 +1,149 @@
+//! The separation event, proved: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0} (eq:main_t_s).
+//!
+//! Every piece of the flow is scanned in time order. A time interval T is *cleared* when the
+//! enclosures prove F > 0 or V < 0 on all of it. The first interval that is not cleared holds
+//! T_s if it exists there:
+//! - V > 0 on T and dF/dt < 0 on T (transversality, dF/dt = ∇F·f from the tape's jet over
+//!   the box): F has at most one zero in T; interval Newton N(T) = m − F(Φ(m)) / F′(T) on the
+//!   flow's Taylor polynomial encloses it (existence: N(T) ⊆ int T), and F > 0 before it, so
+//!   T_s is that zero — and symmetrically F < 0 on T with dV/dt > 0 for a crossing of V = 0;
+//! - otherwise T is bisected; at the finest level an interval whose right end provably satisfies
+//!   the condition encloses T_s (all of it before was cleared), and one that can neither be
+//!   cleared nor proved is reported as a grazing or undecidable separation — never guessed.
+//!
+//! e = V(Φ(T_s)) is enclosed by the flow at the enclosure of T_s (the piece's polynomial in
+//! time, not the hull of a step), intersected with [0, ∞) since V(T_s) ≥ 0 holds at T_s.
+
+use super::flow::{Piece, point};
+use super::tape::{Tape, Workspace};
+use inari::{Interval, const_interval};
+
+const NONNEG: Interval = const_interval!(0.0, f64::INFINITY);
+/// Bisection depth inside one piece.
+const MAX_DEPTH: u32 = 14;
+
+/// A proved separation.
+#[derive(Clone, Debug)]
+pub struct SeparationEvent<const N: usize> {
+    pub ts: Interval,
+    pub e: Interval,
+    pub state: [Interval; N],
+}
+
+pub enum Verdict<const N: usize> {
+    Cleared,
+    Found(SeparationEvent<N>),
+    Undecided(Interval),
+}
+
+struct Ctx<'a, const N: usize> {
+    tape: &'a Tape<Interval, N>,
+    ws: &'a mut Workspace<Interval>,
+    piece: &'a Piece<N>,
+}
+
+impl<const N: usize> Ctx<'_, N> {
+    /// (F, V) over the flow's enclosure at the times `t`.
+    fn fv(&self, t: Interval) -> ([Interval; N], Interval, Interval) {
+        let s = self.piece.enclose(t);
+        let o = self.tape.eval(&s);
+        (s, o[N], o[N + 1])
+    }
+    /// d/dt of output j (N: F, N+1: V) along the flow while in box s, if the jet exists.
+    fn rate(&mut self, s: &[Interval; N], j: usize) -> Option<Interval> {
+        self.tape.jet(s, 1, self.ws).ok()?;
+        Some(self.tape.output_coef(self.ws, 1, j, 1))
+    }
+
+    fn found(&self, t: Interval) -> Verdict<N> {
+        let (s, _, v) = self.fv(t);
+        let e = v.intersection(NONNEG);
+        Verdict::Found(SeparationEvent { ts: t, e, state: s })
+    }
+
+    /// The condition F ≤ 0 ∧ V ≥ 0 provably holds at the time point t.
+    fn holds_at(&self, t: f64) -> bool {
+        let (_, f, v) = self.fv(point(t));
+        f.sup() <= 0.0 && v.inf() >= 0.0
+    }
+
+    /// Interval Newton for the zero of g = sgn·output_j on T, g′ of sign `-1` on T.
+    /// Returns the proved enclosure, `Some(None)` if g has no zero in T, or `None` if undecided.
+    fn newton(&mut self, mut t: Interval, j: usize, sgn: f64) -> Option<Option<Interval>> {
+        let mut proved = false;
+        for _ in 0..40 {
+            let (s, _, _) = self.fv(t);
+            let d = self.rate(&s, j)? * point(sgn);
+            if d.sup() >= 0.0 {
+                return None;
+            }
+            let m = t.mid();
+            let (_, f, v) = self.fv(point(m));
+            let gm = if j == N { f } else { v } * point(sgn);
+            let n = point(m) - gm / d;
+            let tn = t.intersection(n);
+            if tn.is_empty() {
+                return Some(None);
+            }
+            if n.interior(t) {
+                proved = true;
+            }
+            if tn == t {
+                break;
+            }
+            t = tn;
+        }
+        if proved { Some(Some(t)) } else { None }
+    }
+
+    fn scan(&mut self, t: Interval, depth: u32) -> Verdict<N> {
+        let (s, f, v) = self.fv(t);
+        if f.inf() > 0.0 || v.sup() < 0.0 {
+            return Verdict::Cleared;
+        }
+        // a transversal crossing: of F = 0 while V > 0, or of V = 0 while F < 0
+        let attempt = if v.inf() > 0.0 {
+            Some((N, 1.0))
+        } else if f.sup() < 0.0 {
+            Some((N + 1, -1.0))
+        } else {
+            None
+        };
+        if let Some((j, sgn)) = attempt {
+            if f.sup() <= 0.0 && v.inf() >= 0.0 {
+                // the condition holds on all of T and failed just before it: T_s = T.lo
+                return self.found(point(t.inf()));
+            }
+            let _ = &s;
+            match self.newton(t, j, sgn) {
+                Some(Some(ts)) => return self.found(ts),
+                Some(None) => {
+                    // monotone g without a zero in T: g keeps the sign it has at T's end
+                    if !self.holds_at(t.sup()) {
+                        let (_, fe, ve) = self.fv(point(t.sup()));
+                        if fe.inf() > 0.0 || ve.sup() < 0.0 {
+                            return Verdict::Cleared;
+                        }
+                    }
+                }
+                None => {}
+            }
+        }
+        if depth >= MAX_DEPTH {
+            return if self.holds_at(t.sup()) { self.found(t) } else { Verdict::Undecided(t) };
+        }
+        let m = t.mid();
+        let (a, b) = (Interval::try_from((t.inf(), m)).unwrap(), Interval::try_from((m, t.sup())).unwrap());
+        match self.scan(a, depth + 1) {
+            Verdict::Cleared => self.scan(b, depth + 1),
+            other => other,
+        }
+    }
+}
+
+/// Scans one piece of the flow for the separation event.
+pub fn scan_piece<const N: usize>(tape: &Tape<Interval, N>, ws: &mut Workspace<Interval>, piece: &Piece<N>) -> Verdict<N> {
+    let t = Interval::try_from((piece.t0(), piece.t1())).unwrap();
+    let mut ctx = Ctx { tape, ws, piece };
+    ctx.scan(t, 0)
+}

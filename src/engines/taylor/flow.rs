@@ -1,0 +1,104 @@
+//! The proved flow: rigorous dense output.
+//!
+//! Each piece covers [t0, t1] and gives, for every τ = t − t0 in it, a box containing Φ(t):
+//! - a Taylor piece: Σ_{k<K} x_k τ^k + τ^K C_K, with x_k the coefficients through the box at
+//!   t0 and C_K ⊇ the K-th coefficient over the piece's a-priori enclosure (the Lagrange
+//!   remainder);
+//! - a low-order piece (across a switching surface): X(t0) + τ·f(Y), Y the a-priori enclosure
+//!   (the mean-value form of x(t) = x(t0) + ∫ f).
+
+use inari::{Interval, const_interval};
+
+/// One proved piece of the flow.
+#[derive(Clone, Debug)]
+pub enum Piece<const N: usize> {
+    Taylor { t0: f64, t1: f64, coefs: Vec<[Interval; N]>, remainder: [Interval; N] },
+    LowOrder { t0: f64, t1: f64, x0: [Interval; N], slope: [Interval; N] },
+}
+
+/// τ = t − t0 as an enclosure (t, t0 exact doubles; the difference may not be).
+pub fn tau(t: Interval, t0: f64) -> Interval {
+    (t - point(t0)).intersection(const_interval!(0.0, f64::INFINITY))
+}
+
+pub fn point(x: f64) -> Interval {
+    Interval::try_from((x, x)).expect("finite time")
+}
+
+impl<const N: usize> Piece<N> {
+    pub fn t0(&self) -> f64 {
+        match self {
+            Piece::Taylor { t0, .. } | Piece::LowOrder { t0, .. } => *t0,
+        }
+    }
+    pub fn t1(&self) -> f64 {
+        match self {
+            Piece::Taylor { t1, .. } | Piece::LowOrder { t1, .. } => *t1,
+        }
+    }
+    /// The enclosure of Φ(t) for every t in `t` (an interval inside [t0, t1]).
+    pub fn enclose(&self, t: Interval) -> [Interval; N] {
+        match self {
+            Piece::Taylor { t0, coefs, remainder, .. } => {
+                let s = tau(t, *t0);
+                let k = coefs.len();
+                let sk = s.powi(k as i32);
+                std::array::from_fn(|i| {
+                    let mut acc = remainder[i] * sk;
+                    // Horner on the polynomial part, then add the remainder term
+                    let mut p = coefs[k - 1][i];
+                    for c in coefs.iter().rev().skip(1) {
+                        p = p * s + c[i];
+                    }
+                    acc = acc + p;
+                    acc
+                })
+            }
+            Piece::LowOrder { t0, x0, slope, .. } => {
+                let s = tau(t, *t0);
+                std::array::from_fn(|i| x0[i] + s * slope[i])
+            }
+        }
+    }
+}
+
+/// The proved flow from T = 0: consecutive pieces.
+#[derive(Clone, Debug, Default)]
+pub struct Flow<const N: usize> {
+    pub pieces: Vec<Piece<N>>,
+}
+
+impl<const N: usize> Flow<N> {
+    /// An enclosure of Φ(t) for 0 ≤ t ≤ [`Flow::t_end`] (`None` outside). At a piece boundary
+    /// both pieces are valid; the intersection of the two is returned.
+    pub fn enclose(&self, t: f64) -> Option<[Interval; N]> {
+        if !(t >= 0.0 && t <= self.t_end()) {
+            return None;
+        }
+        let i = self.pieces.partition_point(|p| p.t1() < t);
+        let tt = point(t);
+        let mut b = self.pieces.get(i)?.enclose(tt);
+        if let Some(next) = self.pieces.get(i + 1)
+            && next.t0() == t
+        {
+            let c = next.enclose(tt);
+            for j in 0..N {
+                let x = b[j].intersection(c[j]);
+                if !x.is_empty() {
+                    b[j] = x;
+                }
+            }
+        }
+        Some(b)
+    }
+    /// The end of the proved time range.
+    pub fn t_end(&self) -> f64 {
+        self.pieces.last().map_or(0.0, |p| p.t1())
+    }
+    pub fn len(&self) -> usize {
+        self.pieces.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.pieces.is_empty()
+    }
+}

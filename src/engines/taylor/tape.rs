@@ -1,0 +1,411 @@
+//! A tape of the model's own operations, and Taylor coefficients computed from it.
+//!
+//! The model's field is evaluated once on [`Rec`] (a recording [`Scalar`]); the resulting list
+//! of operations is then replayed order by order (the jet recurrences of
+//! [`crate::arith::series`]), so the K Taylor coefficients of the solution through a box cost
+//! O(K²) per operation, not O(K³) as re-evaluating the field on truncated series would
+//! (TaylorIntegration.jl's `jetcoeffs`, kv's psa). The model is written once: the tape is its
+//! code, run on another number type.
+//!
+//! The solution's coefficients follow from x′ = f(x): x_{k+1} = f(x)_k / (k + 1).
+//!
+//! |·| and the real powers are expanded in the sign region of their operand: an operand whose
+//! constant coefficient does not have a certain sign has no expansion, and the jet fails with
+//! [`JetError::Branch`] naming the component — the caller then takes a low-order step across.
+
+use crate::arith::series::{div_k, mul_k};
+use crate::arith::{Real, Scalar};
+use std::cell::RefCell;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+use std::rc::Rc;
+
+/// One recorded operation; operands are indices of earlier nodes, constants index `consts`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Op {
+    Var(usize),
+    Add(usize, usize),
+    Sub(usize, usize),
+    Mul(usize, usize),
+    Div(usize, usize),
+    Neg(usize),
+    Scale(usize, usize),
+    Shift(usize, usize),
+    Abs(usize),
+    /// |w|^(q−1) w
+    Spow(usize, usize),
+    /// |w|^q
+    Apow(usize, usize),
+}
+
+#[derive(Debug, Default)]
+struct Recorder<R> {
+    ops: Vec<Op>,
+    consts: Vec<R>,
+}
+
+/// The recording number type: each operation appends to the shared tape.
+#[derive(Clone, Debug)]
+pub struct Rec<R> {
+    tape: Rc<RefCell<Recorder<R>>>,
+    idx: usize,
+}
+
+impl<R: Real> Rec<R> {
+    fn push(&self, op: Op) -> Self {
+        let mut t = self.tape.borrow_mut();
+        t.ops.push(op);
+        Rec { tape: self.tape.clone(), idx: t.ops.len() - 1 }
+    }
+    fn push_const(&self, c: &R, op: impl Fn(usize) -> Op) -> Self {
+        let ci = {
+            let mut t = self.tape.borrow_mut();
+            t.consts.push(c.clone());
+            t.consts.len() - 1
+        };
+        self.push(op(ci))
+    }
+}
+
+macro_rules! binop {
+    ($tr:ident, $f:ident, $op:ident) => {
+        impl<R: Real> $tr for Rec<R> {
+            type Output = Self;
+            fn $f(self, o: Self) -> Self {
+                self.push(Op::$op(self.idx, o.idx))
+            }
+        }
+    };
+}
+binop!(Add, add, Add);
+binop!(Sub, sub, Sub);
+binop!(Mul, mul, Mul);
+binop!(Div, div, Div);
+
+impl<R: Real> Neg for Rec<R> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        self.push(Op::Neg(self.idx))
+    }
+}
+
+impl<R: Real> Scalar<R> for Rec<R> {
+    fn scale(&self, c: &R) -> Self {
+        self.push_const(c, |ci| Op::Scale(self.idx, ci))
+    }
+    fn shift(&self, c: &R) -> Self {
+        self.push_const(c, |ci| Op::Shift(self.idx, ci))
+    }
+    fn abs(&self) -> Self {
+        self.push(Op::Abs(self.idx))
+    }
+    fn spow(&self, q: &R) -> Self {
+        self.push_const(q, |ci| Op::Spow(self.idx, ci))
+    }
+    fn apow(&self, q: &R) -> Self {
+        self.push_const(q, |ci| Op::Apow(self.idx, ci))
+    }
+}
+
+/// Why a jet does not exist.
+#[derive(Clone, Debug, PartialEq)]
+pub enum JetError {
+    /// |·| or a real power of state component `var` (or of an intermediate, `var` = None)
+    /// whose sign is not certain: a switching surface or branch point is inside the box.
+    Branch { var: Option<usize> },
+}
+
+/// A recorded function ℝ^N → ℝ^M (the field, then any extra outputs).
+#[derive(Clone, Debug)]
+pub struct Tape<R, const N: usize> {
+    ops: Vec<Op>,
+    consts: Vec<R>,
+    /// Node of each output; the first N are the field f.
+    outputs: Vec<usize>,
+    /// State components that are the operand of a non-analytic operation (switching surfaces).
+    switching: Vec<usize>,
+}
+
+impl<R: Real, const N: usize> Tape<R, N> {
+    /// Records `f` (returning the field's N components followed by any extra outputs).
+    pub fn record(f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>) -> Self {
+        let rec = Rc::new(RefCell::new(Recorder { ops: Vec::new(), consts: Vec::new() }));
+        let vars: [Rec<R>; N] = std::array::from_fn(|i| {
+            rec.borrow_mut().ops.push(Op::Var(i));
+            Rec { tape: rec.clone(), idx: i }
+        });
+        let outs = f(&vars);
+        assert!(outs.len() >= N, "the first N outputs must be the field");
+        let outputs = outs.iter().map(|o| o.idx).collect();
+        drop(outs);
+        drop(vars);
+        let Recorder { ops, consts } = Rc::try_unwrap(rec).expect("tape still shared").into_inner();
+        let mut switching: Vec<usize> = ops
+            .iter()
+            .filter_map(|op| match *op {
+                Op::Abs(a) => Some((a, None)),
+                Op::Spow(a, q) => Some((a, Some((q, true)))),
+                Op::Apow(a, q) => Some((a, Some((q, false)))),
+                _ => None,
+            })
+            .filter(|&(_, q)| match q {
+                None => true,
+                Some((ci, signed)) => !analytic_power(&consts[ci], signed),
+            })
+            .filter_map(|(a, _)| match ops[a] {
+                Op::Var(i) => Some(i),
+                _ => None,
+            })
+            .collect();
+        switching.sort_unstable();
+        switching.dedup();
+        Self { ops, consts, outputs, switching }
+    }
+
+    /// The same tape over another number type (constants converted by `f`).
+    pub fn map<S: Real>(&self, f: impl Fn(&R) -> S) -> Tape<S, N> {
+        Tape { ops: self.ops.clone(), consts: self.consts.iter().map(f).collect(), outputs: self.outputs.clone(), switching: self.switching.clone() }
+    }
+
+    /// The state components on which the field switches (|·| kinks, branch points).
+    pub fn switching(&self) -> &[usize] {
+        &self.switching
+    }
+
+    pub fn len(&self) -> usize {
+        self.ops.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.ops.is_empty()
+    }
+
+    /// Evaluates all outputs at a point (order-0 replay) — plain interval evaluation for
+    /// `R = Interval`, valid across switching surfaces.
+    pub fn eval(&self, x: &[R; N]) -> Vec<R> {
+        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
+        for op in &self.ops {
+            let c = match *op {
+                Op::Var(i) => x[i].clone(),
+                Op::Add(a, b) => v[a].clone() + v[b].clone(),
+                Op::Sub(a, b) => v[a].clone() - v[b].clone(),
+                Op::Mul(a, b) => v[a].clone() * v[b].clone(),
+                Op::Div(a, b) => v[a].clone() / v[b].clone(),
+                Op::Neg(a) => -v[a].clone(),
+                Op::Scale(a, c) => v[a].clone() * self.consts[c].clone(),
+                Op::Shift(a, c) => v[a].clone() + self.consts[c].clone(),
+                Op::Abs(a) => Real::abs(&v[a]),
+                Op::Spow(a, q) => Real::spow(&v[a], &self.consts[q]),
+                Op::Apow(a, q) => Real::apow(&v[a], &self.consts[q]),
+            };
+            v.push(c);
+        }
+        self.outputs.iter().map(|&o| v[o].clone()).collect()
+    }
+
+    /// The Taylor coefficients x_0..x_K of the solution of x′ = f(x), x(0) = x0 (a point or a
+    /// box: for a box every coefficient encloses the coefficients of all solutions through it).
+    /// Returns `coef[i][k]`.
+    pub fn jet(&self, x0: &[R; N], order: usize, ws: &mut Workspace<R>) -> Result<[Vec<R>; N], JetError> {
+        let k1 = order + 1;
+        let nops = self.ops.len();
+        ws.reset(nops, k1);
+        let Workspace { c, aux, sign } = ws;
+        for k in 0..k1 {
+            for (i, op) in self.ops.iter().enumerate() {
+                let at = |n: usize, j: usize| &c[n * k1 + j];
+                let val = match *op {
+                    Op::Var(v) => {
+                        if k == 0 {
+                            x0[v].clone()
+                        } else {
+                            c[self.outputs[v] * k1 + k - 1].clone() / R::from_int(k as i64)
+                        }
+                    }
+                    Op::Add(a, b) => at(a, k).clone() + at(b, k).clone(),
+                    Op::Sub(a, b) => at(a, k).clone() - at(b, k).clone(),
+                    Op::Neg(a) => -at(a, k).clone(),
+                    Op::Mul(a, b) => mul_k(&c[a * k1..a * k1 + k + 1], &c[b * k1..b * k1 + k + 1], k),
+                    Op::Div(a, b) => div_k(&c[a * k1..a * k1 + k + 1], &c[b * k1..b * k1 + k + 1], &c[i * k1..i * k1 + k], k),
+                    Op::Scale(a, q) => at(a, k).clone() * self.consts[q].clone(),
+                    Op::Shift(a, q) => {
+                        if k == 0 {
+                            at(a, 0).clone() + self.consts[q].clone()
+                        } else {
+                            at(a, k).clone()
+                        }
+                    }
+                    Op::Abs(a) => {
+                        if k == 0 {
+                            sign[i] = self.sign_of(a, at(a, 0))?;
+                        }
+                        if sign[i] > 0 { at(a, k).clone() } else { -at(a, k).clone() }
+                    }
+                    Op::Spow(a, q) | Op::Apow(a, q) => {
+                        let signed = matches!(op, Op::Spow(..));
+                        let qv = &self.consts[q];
+                        if analytic_power(qv, signed) {
+                            // |w|^(q−1)w = w^q (q odd), |w|^q = w^q (q even): repeated products
+                            // are exact as series; use the power recurrence only where w_0 ≠ 0.
+                            let e = qv.as_integer().unwrap();
+                            if e == 0 {
+                                if k == 0 { R::one() } else { R::zero() }
+                            } else if e == 1 {
+                                at(a, k).clone()
+                            } else if e == 2 {
+                                mul_k(&c[a * k1..a * k1 + k + 1], &c[a * k1..a * k1 + k + 1], k)
+                            } else {
+                                // w^e by the power recurrence needs w_0 ≠ 0
+                                if k == 0 {
+                                    sign[i] = self.sign_of(a, at(a, 0))?;
+                                }
+                                pow_node(c, aux, sign[i], a, i, k, k1, qv, signed)
+                            }
+                        } else {
+                            if k == 0 {
+                                sign[i] = self.sign_of(a, at(a, 0))?;
+                            }
+                            pow_node(c, aux, sign[i], a, i, k, k1, qv, signed)
+                        }
+                    }
+                };
+                c[i * k1 + k] = val;
+            }
+        }
+        // x_k is stored at the Var nodes (indices 0..N, recorded first)
+        Ok(std::array::from_fn(|v| c[v * k1..(v + 1) * k1].to_vec()))
+    }
+
+    /// Coefficient k of output `j` (0..N: the field; N..: the extra outputs) from the last
+    /// [`Tape::jet`] run in `ws` with the same `order`.
+    pub fn output_coef(&self, ws: &Workspace<R>, order: usize, j: usize, k: usize) -> R {
+        ws.c[self.outputs[j] * (order + 1) + k].clone()
+    }
+
+    fn sign_of(&self, a: usize, w0: &R) -> Result<i8, JetError> {
+        w0.sign().ok_or(JetError::Branch {
+            var: match self.ops[a] {
+                Op::Var(i) => Some(i),
+                _ => None,
+            },
+        })
+    }
+}
+
+/// True when the power is an entire function: |w|^(q−1)w with odd integer q ≥ 1, |w|^q with
+/// even integer q ≥ 0.
+pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
+    match q.as_integer() {
+        Some(k) if k >= 0 => (k % 2 == 1) == signed,
+        _ => false,
+    }
+}
+
+/// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: with w̃ = s·w
+/// and ũ = w̃^q, ũ_0 = w̃_0^q, ũ_k = 1/(k w̃_0) Σ_{j<k} (q(k−j) − j) w̃_{k−j} ũ_j; the node
+/// is s·ũ (signed) or ũ (absolute). ũ is kept in `aux`.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn pow_node<R: Real>(c: &[R], aux: &mut [R], s: i8, a: usize, i: usize, k: usize, k1: usize, q: &R, signed: bool) -> R {
+    let w = |j: usize| if s > 0 { c[a * k1 + j].clone() } else { -c[a * k1 + j].clone() };
+    let u = if k == 0 {
+        Real::apow(&w(0), q)
+    } else {
+        let mut acc = R::zero();
+        for j in 0..k {
+            let f = q.clone() * R::from_int((k - j) as i64) - R::from_int(j as i64);
+            acc = acc + f * w(k - j) * aux[i * k1 + j].clone();
+        }
+        acc / (R::from_int(k as i64) * w(0))
+    };
+    aux[i * k1 + k] = u.clone();
+    if signed && s < 0 { -u } else { u }
+}
+
+/// Reusable storage for [`Tape::jet`].
+#[derive(Debug)]
+pub struct Workspace<R> {
+    c: Vec<R>,
+    aux: Vec<R>,
+    sign: Vec<i8>,
+}
+
+impl<R> Default for Workspace<R> {
+    fn default() -> Self {
+        Self { c: Vec::new(), aux: Vec::new(), sign: Vec::new() }
+    }
+}
+
+impl<R: Real> Workspace<R> {
+    fn reset(&mut self, nops: usize, k1: usize) {
+        let n = nops * k1;
+        if self.c.len() != n {
+            self.c = vec![R::zero(); n];
+            self.aux = vec![R::zero(); n];
+        }
+        if self.sign.len() != nops {
+            self.sign = vec![1; nops];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arith::series::Series;
+    use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+
+    /// Coefficients by the slow route: Picard on truncated series, re-evaluating the model on
+    /// `Series` K times.
+    fn series_jet<M: CollisionModel<f64, N>, const N: usize>(m: &M, x0: [f64; N], order: usize) -> [Vec<f64>; N] {
+        let mut x: [Vec<f64>; N] = std::array::from_fn(|i| {
+            let mut v = vec![0.0; order + 1];
+            v[0] = x0[i];
+            v
+        });
+        for k in 0..order {
+            let s: [Series<f64>; N] = std::array::from_fn(|i| Series::from_coefficients(x[i].clone()));
+            let f = m.field(&s);
+            for i in 0..N {
+                x[i][k + 1] = f[i].c[k] / (k as f64 + 1.0);
+            }
+        }
+        x
+    }
+
+    #[test]
+    fn tape_jet_equals_series_jet() {
+        let shc = Shc::new(NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap());
+        let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
+        assert_eq!(tape.switching(), &[0, 1, 2]);
+        let x0 = [-0.3, -0.2, 0.4];
+        let a = tape.jet(&x0, 12, &mut Workspace::default()).unwrap();
+        let b = series_jet(&shc, x0, 12);
+        for i in 0..3 {
+            for k in 0..=12 {
+                assert!((a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()), "{i} {k}: {} {}", a[i][k], b[i][k]);
+            }
+        }
+        let mx = Maxwell::new(NdParams::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap());
+        let tape = Tape::<f64, 4>::record(|v| mx.field(v).to_vec());
+        assert_eq!(tape.switching(), &[1, 2, 3]);
+        let x0 = [0.1, -0.3, -0.2, 0.4];
+        let a = tape.jet(&x0, 10, &mut Workspace::default()).unwrap();
+        let b = series_jet(&mx, x0, 10);
+        for i in 0..4 {
+            for k in 0..=10 {
+                assert!((a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()), "{i} {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn linear_model_has_no_switching_and_branch_is_refused() {
+        let lin = Shc::new(NdParams::with_admissibility(ModelKind::Shc, crate::models::Admissibility::Closed, 0.0, 0.0, 0.5, 0.0, 1.0, 1.0).unwrap());
+        let tape = Tape::<f64, 3>::record(|v| lin.field(v).to_vec());
+        // n = p = 1: |X| (in σ|X|^p V) and |Z| (in Γ|Z|^n V) and |V| are kinks, even with zero factors
+        assert_eq!(tape.switching(), &[0, 1, 2]);
+        let shc = Shc::new(NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap());
+        let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
+        assert_eq!(tape.jet(&[0.0, 0.0, -1.0], 5, &mut Workspace::default()), Err(JetError::Branch { var: Some(0) }));
+    }
+}
