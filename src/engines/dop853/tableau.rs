@@ -22,6 +22,9 @@
 //!
 //! The literals carry Hairer's 30 significant digits; Rust rounds them to the nearest `f64`.
 
+// Hairer's published digits are kept as the source of truth rather than 17-digit roundings.
+#![allow(clippy::excessive_precision)]
+
 /// Number of stages of one step (without the FSAL evaluation).
 pub const N_STAGES: usize = 12;
 
