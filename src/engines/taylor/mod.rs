@@ -41,7 +41,10 @@ pub struct TaylorOptions {
     pub min_taylor_step: f64,
     /// First trial length of a low-order step across a switching surface.
     pub low_order_step: f64,
-    /// Most width a low-order step may add to the enclosure.
+    /// Most width a low-order step may add to the enclosure (or 10⁻³ of the width it has, when
+    /// that is larger: an enclosure that is already wide, e.g. for a range of v0, is not
+    /// refined by crossing in tiny steps; likewise the truncation tolerance is at least 10⁻⁴ of
+    /// the width).
     pub cross_tol: f64,
 }
 
@@ -125,7 +128,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
             }
         }
         let h_max = (opts.horizon - t).min(if h_surf.is_finite() { 0.9 * h_surf } else { f64::INFINITY });
-        let out = match step::taylor_step(&tapes, &mut ws, t, &x, opts.order, opts.tol, h_max, opts.min_taylor_step) {
+        let out = match step::taylor_step(&tapes, &mut ws, t, &x, opts.order, opts.tol.max(1e-4 * w), h_max, opts.min_taylor_step) {
             Ok(o) => o,
             Err(_) => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
@@ -135,7 +138,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
                         return Err(RigorError { reason: "cannot cross a switching surface with a proved low-order step".into(), t, width: w });
                     }
                     if let Some(o) = step::low_order_step(&tape, t, &x, h)
-                        && step::width(&o.x1) - w <= opts.cross_tol + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
+                        && step::width(&o.x1) - w <= opts.cross_tol.max(1e-3 * w) + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
                     {
                         h_low = h;
                         break o;

@@ -1,0 +1,141 @@
+//! The rigorous engine's enclosures against closed forms, an independent float reference at
+//! tight tolerance, deliberately wrong values, parameter ranges, and random Taylor jets.
+
+use bwcl::arith::Real;
+use bwcl::engines::dop853::Options;
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::engines::taylor::tape::{Tape, Workspace};
+use bwcl::models::scaling::nd_from_base;
+use bwcl::models::{Admissibility, CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::{FloatOptions, impact};
+use inari::Interval;
+use proptest::prelude::*;
+
+const TABLE1: [(ModelKind, &str); 4] = [
+    (ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27"),
+    (ModelKind::Shc, "0.63,-0.611,0.188,0.00594,1,2.02"),
+    (ModelKind::Maxwell, "0.655,-0.64,0.519,0.0118,1.94,2.28"),
+    (ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14"),
+];
+
+fn iv(s: &str) -> Interval {
+    Interval::parse_decimal(s).unwrap()
+}
+
+/// (rigorous e, rigorous T_s, float e at tight tolerance) for a Table 1 set at v0.
+fn case(kind: ModelKind, base: &str, v0: &str) -> (Interval, Interval, f64) {
+    let bi = NdParams::<Interval>::parse(kind, base).unwrap();
+    let bf = NdParams::<f64>::parse(kind, base).unwrap();
+    let pi = nd_from_base(kind, &bi, &iv(v0)).unwrap();
+    let pf = nd_from_base(kind, &bf, &v0.parse::<f64>().unwrap()).unwrap();
+    let tight = FloatOptions { ode: Options { rtol: 1e-13, atol: 1e-15, ..Options::paper() }, ..Default::default() };
+    let opts = TaylorOptions::default();
+    match kind {
+        ModelKind::Shc => {
+            let r = rigorous_impact(&Shc::new(pi), &opts).unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
+            (r.e, r.ts, impact(&Shc::new(pf), &tight).unwrap().e)
+        }
+        ModelKind::Maxwell => {
+            let r = rigorous_impact(&Maxwell::new(pi), &opts).unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
+            (r.e, r.ts, impact(&Maxwell::new(pf), &tight).unwrap().e)
+        }
+    }
+}
+
+#[test]
+fn table1_sets_at_the_paper_speeds_are_enclosed_tightly() {
+    for (kind, base) in TABLE1 {
+        for v0 in ["0.1", "0.5", "1", "2", "3", "4", "5"] {
+            let (e, ts, ef) = case(kind, base, v0);
+            eprintln!("{kind:?} {base} v0={v0}: e ∈ [{:.17}, {:.17}] width {:.2e}, T_s width {:.2e}; DOP853(1e-13) {ef:.17}", e.inf(), e.sup(), e.wid(), ts.wid());
+            assert!(e.wid() <= 1e-10, "width {:e}", e.wid());
+            // DOP853 at rtol 1e-13 is within ~1e-11 of the truth: it must lie in the enclosure
+            // widened by that much
+            assert!(e.inf() - 1e-11 <= ef && ef <= e.sup() + 1e-11, "{ef} ∉ {e:?}");
+        }
+    }
+}
+
+#[test]
+fn a_deliberately_wrong_value_is_excluded() {
+    let (e, ts, ef) = case(ModelKind::Shc, TABLE1[0].1, "1");
+    assert!(!e.contains(ef + 1e-9) && !e.contains(ef - 1e-9));
+    // the paper's SciPy value 0.85003992947 carries DOP853's 2e-10 error at rtol 1e-10: the
+    // proved enclosure excludes it, and contains the tight-tolerance value
+    assert!(!e.contains(0.85003992947));
+    assert!(ts.contains(3.0909920920552) || (ts.mid() - 3.0909920920552).abs() < 1e-11);
+    // a neighbouring parameter set (κ = 0.633) gives a value outside
+    let (e2, _, _) = case(ModelKind::Shc, "1.43,-1.42,0.633,0.00715,1.31,1.27", "1");
+    assert!(e.sup() < e2.inf() || e2.sup() < e.inf());
+}
+
+#[test]
+fn undamped_linear_case_encloses_pi_and_one() {
+    // B = Γ = σ = 0, p = n = 1: Z = X, X'' = −X: T_s = π, e = 1 (the closed set of the appendix)
+    let p = NdParams::<Interval>::with_admissibility(ModelKind::Shc, Admissibility::Closed, iv("0"), iv("0"), iv("0.5"), iv("0"), iv("1"), iv("1")).unwrap();
+    let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
+    assert!(r.ts.contains(std::f64::consts::PI) && r.e.contains(1.0), "{:?} {:?}", r.ts, r.e);
+    assert!(r.ts.wid() < 1e-6 && r.e.wid() < 1e-6);
+}
+
+#[test]
+fn conservative_hertz_case_encloses_e_one_at_a_branch_point() {
+    // B = Γ = σ = 0, p = 1.5: Z = X, V' = −|X|^(p−1)X conserves V²/2 + |X|^(p+1)/(p+1): e = 1,
+    // and separation happens exactly as X returns to the branch point X = 0
+    let p = NdParams::<Interval>::with_admissibility(ModelKind::Shc, Admissibility::Closed, iv("0"), iv("0"), iv("0.3"), iv("0"), iv("1.2"), iv("1.5")).unwrap();
+    let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
+    assert!(r.e.contains(1.0), "{:?}", r.e);
+    assert!(r.e.wid() < 1e-5, "{:?}", r.e);
+    // the float engine agrees
+    let pf = NdParams::<f64>::with_admissibility(ModelKind::Shc, Admissibility::Closed, 0.0, 0.0, 0.3, 0.0, 1.2, 1.5).unwrap();
+    let f = impact(&Shc::new(pf), &FloatOptions::default()).unwrap();
+    assert!((f.e - 1.0).abs() < 1e-8 && r.ts.inf() - 1e-8 <= f.ts.unwrap() && f.ts.unwrap() <= r.ts.sup() + 1e-8);
+}
+
+#[test]
+fn a_range_of_impact_speeds_is_enclosed_for_every_value() {
+    let (kind, base) = TABLE1[0];
+    let bi = NdParams::<Interval>::parse(kind, base).unwrap();
+    let p = nd_from_base(kind, &bi, &iv("0.999..1.001")).unwrap();
+    let opts = TaylorOptions { max_width: 1.0, ..Default::default() };
+    let r = rigorous_impact(&Shc::new(p), &opts).unwrap();
+    let bf = NdParams::<f64>::parse(kind, base).unwrap();
+    for v0 in [0.999, 0.9995, 1.0, 1.0005, 1.001] {
+        let e = impact(&Shc::new(nd_from_base(kind, &bf, &v0).unwrap()), &FloatOptions::default()).unwrap().e;
+        assert!(r.e.inf() - 1e-9 <= e && e <= r.e.sup() + 1e-9, "v0={v0}: {e} ∉ {:?}", r.e);
+    }
+    assert!(r.e.wid() < 1e-2, "{:?}", r.e);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Interval Taylor coefficients over a box contain the float coefficients at points of it.
+    #[test]
+    fn interval_jets_enclose_float_jets(
+        b in 0.05f64..3.0, gfrac in -0.99f64..0.99, kappa in 0.01f64..0.99, sigma in 0.001f64..2.0,
+        n in 1.0f64..3.0, p in 1.0f64..3.5,
+        x in -2.0f64..-0.05, z in 0.05f64..2.0, v in prop_oneof![-2.0f64..-0.05, 0.05f64..2.0],
+        u in 0.0f64..1.0,
+    ) {
+        let g = gfrac * b;
+        let pf = NdParams::<f64>::new(ModelKind::Shc, b, g, kappa, sigma, n, p).unwrap();
+        let pi = NdParams::<Interval>::new(ModelKind::Shc, iv(&b.to_string()), iv(&g.to_string()), iv(&kappa.to_string()), iv(&sigma.to_string()), iv(&n.to_string()), iv(&p.to_string())).unwrap();
+        let (mf, mi) = (Shc::new(pf), Shc::new(pi));
+        let tf = Tape::<f64, 3>::record(|s| mf.field(s).to_vec());
+        let ti = Tape::<Interval, 3>::record(|s| mi.field(s).to_vec());
+        let r = 0.01;
+        let bx = [x, z, v].map(|c| Interval::try_from((c - r * c.abs(), c + r * c.abs())).unwrap());
+        let pt = [x, z, v].map(|c| c + (2.0 * u - 1.0) * r * c.abs());
+        let ji = ti.jet(&bx, 8, &mut Workspace::default()).unwrap();
+        let jf = tf.jet(&pt, 8, &mut Workspace::default()).unwrap();
+        for i in 0..3 {
+            for k in 0..=8 {
+                let (c, e) = (jf[i][k], ji[i][k]);
+                let slack = 1e-12 * (1.0 + c.abs());
+                prop_assert!(e.inf() - slack <= c && c <= e.sup() + slack, "x_{i},{k} = {c} ∉ {e:?}");
+            }
+        }
+    }
+}
