@@ -29,15 +29,24 @@ fn case(kind: ModelKind, base: &str, v0: &str) -> (Interval, Interval, f64) {
     let bf = NdParams::<f64>::parse(kind, base).unwrap();
     let pi = nd_from_base(kind, &bi, &iv(v0)).unwrap();
     let pf = nd_from_base(kind, &bf, &v0.parse::<f64>().unwrap()).unwrap();
-    let tight = FloatOptions { ode: Options { rtol: 1e-13, atol: 1e-15, ..Options::paper() }, ..Default::default() };
+    let tight = FloatOptions {
+        ode: Options {
+            rtol: 1e-13,
+            atol: 1e-15,
+            ..Options::paper()
+        },
+        ..Default::default()
+    };
     let opts = TaylorOptions::default();
     match kind {
         ModelKind::Shc => {
-            let r = rigorous_impact(&Shc::new(pi), &opts).unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
+            let r = rigorous_impact(&Shc::new(pi), &opts)
+                .unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
             (r.e, r.ts, impact(&Shc::new(pf), &tight).unwrap().e)
         }
         ModelKind::Maxwell => {
-            let r = rigorous_impact(&Maxwell::new(pi), &opts).unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
+            let r = rigorous_impact(&Maxwell::new(pi), &opts)
+                .unwrap_or_else(|e| panic!("{base} v0={v0}: {e}"));
             (r.e, r.ts, impact(&Maxwell::new(pf), &tight).unwrap().e)
         }
     }
@@ -48,11 +57,20 @@ fn table1_sets_at_the_paper_speeds_are_enclosed_tightly() {
     for (kind, base) in TABLE1 {
         for v0 in ["0.1", "0.5", "1", "2", "3", "4", "5"] {
             let (e, ts, ef) = case(kind, base, v0);
-            eprintln!("{kind:?} {base} v0={v0}: e ∈ [{:.17}, {:.17}] width {:.2e}, T_s width {:.2e}; DOP853(1e-13) {ef:.17}", e.inf(), e.sup(), e.wid(), ts.wid());
+            eprintln!(
+                "{kind:?} {base} v0={v0}: e ∈ [{:.17}, {:.17}] width {:.2e}, T_s width {:.2e}; DOP853(1e-13) {ef:.17}",
+                e.inf(),
+                e.sup(),
+                e.wid(),
+                ts.wid()
+            );
             assert!(e.wid() <= 1e-10, "width {:e}", e.wid());
             // DOP853 at rtol 1e-13 is within ~1e-11 of the truth: it must lie in the enclosure
             // widened by that much
-            assert!(e.inf() - 1e-11 <= ef && ef <= e.sup() + 1e-11, "{ef} ∉ {e:?}");
+            assert!(
+                e.inf() - 1e-11 <= ef && ef <= e.sup() + 1e-11,
+                "{ef} ∉ {e:?}"
+            );
         }
     }
 }
@@ -73,9 +91,24 @@ fn a_deliberately_wrong_value_is_excluded() {
 #[test]
 fn undamped_linear_case_encloses_pi_and_one() {
     // B = Γ = σ = 0, p = n = 1: Z = X, X'' = −X: T_s = π, e = 1 (the closed set of the appendix)
-    let p = NdParams::<Interval>::with_admissibility(ModelKind::Shc, Admissibility::Closed, iv("0"), iv("0"), iv("0.5"), iv("0"), iv("1"), iv("1")).unwrap();
+    let p = NdParams::<Interval>::with_admissibility(
+        ModelKind::Shc,
+        Admissibility::Closed,
+        iv("0"),
+        iv("0"),
+        iv("0.5"),
+        iv("0"),
+        iv("1"),
+        iv("1"),
+    )
+    .unwrap();
     let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
-    assert!(r.ts.contains(std::f64::consts::PI) && r.e.contains(1.0), "{:?} {:?}", r.ts, r.e);
+    assert!(
+        r.ts.contains(std::f64::consts::PI) && r.e.contains(1.0),
+        "{:?} {:?}",
+        r.ts,
+        r.e
+    );
     assert!(r.ts.wid() < 1e-6 && r.e.wid() < 1e-6);
 }
 
@@ -83,14 +116,38 @@ fn undamped_linear_case_encloses_pi_and_one() {
 fn conservative_hertz_case_encloses_e_one_at_a_branch_point() {
     // B = Γ = σ = 0, p = 1.5: Z = X, V' = −|X|^(p−1)X conserves V²/2 + |X|^(p+1)/(p+1): e = 1,
     // and separation happens exactly as X returns to the branch point X = 0
-    let p = NdParams::<Interval>::with_admissibility(ModelKind::Shc, Admissibility::Closed, iv("0"), iv("0"), iv("0.3"), iv("0"), iv("1.2"), iv("1.5")).unwrap();
+    let p = NdParams::<Interval>::with_admissibility(
+        ModelKind::Shc,
+        Admissibility::Closed,
+        iv("0"),
+        iv("0"),
+        iv("0.3"),
+        iv("0"),
+        iv("1.2"),
+        iv("1.5"),
+    )
+    .unwrap();
     let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
     assert!(r.e.contains(1.0), "{:?}", r.e);
     assert!(r.e.wid() < 1e-5, "{:?}", r.e);
     // the float engine agrees
-    let pf = NdParams::<f64>::with_admissibility(ModelKind::Shc, Admissibility::Closed, 0.0, 0.0, 0.3, 0.0, 1.2, 1.5).unwrap();
+    let pf = NdParams::<f64>::with_admissibility(
+        ModelKind::Shc,
+        Admissibility::Closed,
+        0.0,
+        0.0,
+        0.3,
+        0.0,
+        1.2,
+        1.5,
+    )
+    .unwrap();
     let f = impact(&Shc::new(pf), &FloatOptions::default()).unwrap();
-    assert!((f.e - 1.0).abs() < 1e-8 && r.ts.inf() - 1e-8 <= f.ts.unwrap() && f.ts.unwrap() <= r.ts.sup() + 1e-8);
+    assert!(
+        (f.e - 1.0).abs() < 1e-8
+            && r.ts.inf() - 1e-8 <= f.ts.unwrap()
+            && f.ts.unwrap() <= r.ts.sup() + 1e-8
+    );
 }
 
 #[test]
@@ -98,12 +155,24 @@ fn a_range_of_impact_speeds_is_enclosed_for_every_value() {
     let (kind, base) = TABLE1[0];
     let bi = NdParams::<Interval>::parse(kind, base).unwrap();
     let p = nd_from_base(kind, &bi, &iv("0.999..1.001")).unwrap();
-    let opts = TaylorOptions { max_width: 1.0, ..Default::default() };
+    let opts = TaylorOptions {
+        max_width: 1.0,
+        ..Default::default()
+    };
     let r = rigorous_impact(&Shc::new(p), &opts).unwrap();
     let bf = NdParams::<f64>::parse(kind, base).unwrap();
     for v0 in [0.999, 0.9995, 1.0, 1.0005, 1.001] {
-        let e = impact(&Shc::new(nd_from_base(kind, &bf, &v0).unwrap()), &FloatOptions::default()).unwrap().e;
-        assert!(r.e.inf() - 1e-9 <= e && e <= r.e.sup() + 1e-9, "v0={v0}: {e} ∉ {:?}", r.e);
+        let e = impact(
+            &Shc::new(nd_from_base(kind, &bf, &v0).unwrap()),
+            &FloatOptions::default(),
+        )
+        .unwrap()
+        .e;
+        assert!(
+            r.e.inf() - 1e-9 <= e && e <= r.e.sup() + 1e-9,
+            "v0={v0}: {e} ∉ {:?}",
+            r.e
+        );
     }
     assert!(r.e.wid() < 1e-2, "{:?}", r.e);
 }

@@ -72,6 +72,7 @@ impl<R: Real, const M: usize> Neg for Dual<R, M> {
         }
     }
 }
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl<R: Real, const M: usize> Mul for Dual<R, M> {
     type Output = Self;
     fn mul(self, o: Self) -> Self {
@@ -83,6 +84,7 @@ impl<R: Real, const M: usize> Mul for Dual<R, M> {
         }
     }
 }
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl<R: Real, const M: usize> Div for Dual<R, M> {
     type Output = Self;
     fn div(self, o: Self) -> Self {
@@ -132,29 +134,6 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn derivatives_of_powers() {
-        let q = 1.7;
-        for x in [-2.0_f64, -0.3, 0.4, 3.0] {
-            let d = Dual::<f64, 1>::variable(x, 0);
-            let s = Scalar::<f64>::spow(&d, &q);
-            assert!((s.d[0] - q * x.abs().powf(q - 1.0)).abs() < 1e-14);
-            let a = Scalar::<f64>::apow(&d, &q);
-            assert!(
-                (a.d[0] - q * x.abs().powf(q - 1.0) * x.signum()).abs() < 1e-14,
-                "{x}"
-            );
-            let b = (d.clone() * d.clone() / Scalar::<f64>::shift(&d, &1.0)).d[0];
-            let e = (2.0 * x * (x + 1.0) - x * x) / ((x + 1.0) * (x + 1.0));
-            assert!((b - e).abs() < 1e-13);
-        }
-    }
-}
-
 /// Duals over a field are a field for the tape's recurrences: exponents (the models' n, p) are
 /// constants, so `pow`/`spow`/`apow` differentiate in the base only (a non-constant exponent
 /// gives an unbounded derivative, never a wrong one).
@@ -169,7 +148,10 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
         R::parse_decimal(s).map(Self::constant)
     }
     fn unbounded() -> Self {
-        Self { v: R::unbounded(), d: std::array::from_fn(|_| R::unbounded()) }
+        Self {
+            v: R::unbounded(),
+            d: std::array::from_fn(|_| R::unbounded()),
+        }
     }
     fn abs(&self) -> Self {
         <Self as Scalar<R>>::abs(self)
@@ -210,5 +192,28 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     }
     fn is_finite(&self) -> bool {
         self.v.is_finite() && self.d.iter().all(|c| c.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn derivatives_of_powers() {
+        let q = 1.7;
+        for x in [-2.0_f64, -0.3, 0.4, 3.0] {
+            let d = Dual::<f64, 1>::variable(x, 0);
+            let s = Scalar::<f64>::spow(&d, &q);
+            assert!((s.d[0] - q * x.abs().powf(q - 1.0)).abs() < 1e-14);
+            let a = Scalar::<f64>::apow(&d, &q);
+            assert!(
+                (a.d[0] - q * x.abs().powf(q - 1.0) * x.signum()).abs() < 1e-14,
+                "{x}"
+            );
+            let b = (d.clone() * d.clone() / Scalar::<f64>::shift(&d, &1.0)).d[0];
+            let e = (2.0 * x * (x + 1.0) - x * x) / ((x + 1.0) * (x + 1.0));
+            assert!((b - e).abs() < 1e-13);
+        }
     }
 }

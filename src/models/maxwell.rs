@@ -174,6 +174,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::approx_constant)] // 3.14 is the paper's p (Table 1), not π
     fn field_matches_the_paper_written_out() {
         let m = model();
         let (b, g, k, s, n, p) = (0.44, -0.418, 0.113, 0.00785, 1.27, 3.14_f64);

@@ -19,16 +19,22 @@
 //! All of it is computed in the arithmetic of `R`: for intervals, every derived constant is an
 //! enclosure.
 
-use super::params::{ModelKind, NdParams, ParamError, parse_list, show};
+use super::params::{Admissibility, ModelKind, NdParams, ParamError, parse_list, show};
 use crate::arith::Real;
 
 /// 𝓟(P*, v0): the nondimensional parameters of base set `base` at impact speed `v0` (> 0).
+///
+/// The base set is validated against 𝓟 (P* ∈ ℙ*); the map keeps every point in 𝓟, since B and
+/// Γ are scaled by the same s = v0^(2n/(p+1)) > 0 and σ by a positive factor. The mapped set is
+/// therefore not re-validated field by field: for a range of v0 that check would compare the
+/// enclosures of Γ and B as if independent and refuse admissible input.
 pub fn nd_from_base<R: Real>(
     kind: ModelKind,
     base: &NdParams<R>,
     v0: &R,
 ) -> Result<NdParams<R>, ParamError> {
     check_speed(v0)?;
+    base.validate(kind, Admissibility::Open)?;
     let one = R::one();
     let p1 = base.p.clone() + one.clone();
     let s = v0.pow(&(R::from_int(2) * base.n.clone() / p1.clone()));
@@ -37,15 +43,25 @@ pub fn nd_from_base<R: Real>(
         ModelKind::Maxwell => (base.p.clone() - one) / p1,
     };
     let sigma = base.sigma.clone() * v0.pow(&sigma_exp);
-    NdParams::new(
-        kind,
-        base.b.clone() * s.clone(),
-        base.gamma.clone() * s,
-        base.kappa.clone(),
+    let mapped = NdParams {
+        b: base.b.clone() * s.clone(),
+        gamma: base.gamma.clone() * s,
+        kappa: base.kappa.clone(),
         sigma,
-        base.n.clone(),
-        base.p.clone(),
-    )
+        n: base.n.clone(),
+        p: base.p.clone(),
+    };
+    // what can still fail is arithmetic, not admissibility: overflow to ±∞, an underflow to 0
+    for (x, name) in [(&mapped.b, "B"), (&mapped.sigma, "σ")] {
+        if !x.is_finite() || x.lo() <= 0.0 {
+            return Err(ParamError(format!(
+                "{name} = {} at v0 = {} is not a finite positive number",
+                show(x),
+                show(v0)
+            )));
+        }
+    }
+    Ok(mapped)
 }
 
 /// Checks an impact speed: finite and > 0 (every value, for an interval).
@@ -311,6 +327,28 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_range_of_speeds_maps_to_an_admissible_set() {
+        use inari::Interval;
+        let base =
+            NdParams::<Interval>::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27")
+                .unwrap();
+        let v0 = Interval::parse_decimal("0.9..1.1").unwrap();
+        let p = nd_from_base(ModelKind::Shc, &base, &v0).unwrap();
+        assert!(p.b.inf() < 1.43 && p.b.sup() > 1.43);
+        // a base set outside ℙ* is refused before mapping
+        let bad = NdParams {
+            gamma: Interval::parse_decimal("-1.5").unwrap(),
+            ..base
+        };
+        assert!(
+            nd_from_base(ModelKind::Shc, &bad, &v0)
+                .unwrap_err()
+                .0
+                .contains("Γ = -1.5")
+        );
     }
 
     #[test]

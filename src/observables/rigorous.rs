@@ -23,7 +23,12 @@ pub fn rigorous_impact<M: CollisionModel<Interval, N>, const N: usize>(
     opts: &TaylorOptions,
 ) -> Result<Enclosure<N>, RigorError> {
     let (flow, ev) = integrate_to_separation(model, opts)?;
-    Ok(Enclosure { ts: ev.ts, e: ev.e, state: ev.state, flow })
+    Ok(Enclosure {
+        ts: ev.ts,
+        e: ev.e,
+        state: ev.state,
+        flow,
+    })
 }
 
 #[cfg(test)]
@@ -33,7 +38,10 @@ mod tests {
     use crate::observables::{FloatOptions, impact};
 
     fn shc(s: &str) -> (Shc<Interval>, Shc<f64>) {
-        (Shc::new(NdParams::parse(ModelKind::Shc, s).unwrap()), Shc::new(NdParams::parse(ModelKind::Shc, s).unwrap()))
+        (
+            Shc::new(NdParams::parse(ModelKind::Shc, s).unwrap()),
+            Shc::new(NdParams::parse(ModelKind::Shc, s).unwrap()),
+        )
     }
 
     #[test]
@@ -44,22 +52,43 @@ mod tests {
         let dt = t0.elapsed();
         let f = impact(&mf, &FloatOptions::default()).unwrap();
         match &r {
-            Ok(enc) => eprintln!("ts {:?} e {:?} width {:e} pieces {} in {:?}", enc.ts, enc.e, enc.e.wid(), enc.flow.len(), dt),
+            Ok(enc) => eprintln!(
+                "ts {:?} e {:?} width {:e} pieces {} in {:?}",
+                enc.ts,
+                enc.e,
+                enc.e.wid(),
+                enc.flow.len(),
+                dt
+            ),
             Err(e) => eprintln!("{e} in {dt:?}"),
         }
         let enc = r.unwrap();
-        assert!(enc.e.contains(f.e) || (enc.e.inf() - f.e).abs() < 1e-9, "{:?} vs {}", enc.e, f.e);
+        assert!(
+            enc.e.contains(f.e) || (enc.e.inf() - f.e).abs() < 1e-9,
+            "{:?} vs {}",
+            enc.e,
+            f.e
+        );
     }
 
     #[test]
     fn maxwell_dsa_at_v0_5() {
-        let base = NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap();
+        let base =
+            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
+                .unwrap();
         let v0: Interval = "[5]".parse().unwrap();
         let p = crate::models::scaling::nd_from_base(ModelKind::Maxwell, &base, &v0).unwrap();
         let t0 = std::time::Instant::now();
         let r = rigorous_impact(&Maxwell::new(p), &TaylorOptions::default());
         match &r {
-            Ok(enc) => eprintln!("ts {:?} e {:?} width {:e} pieces {} in {:?}", enc.ts, enc.e, enc.e.wid(), enc.flow.len(), t0.elapsed()),
+            Ok(enc) => eprintln!(
+                "ts {:?} e {:?} width {:e} pieces {} in {:?}",
+                enc.ts,
+                enc.e,
+                enc.e.wid(),
+                enc.flow.len(),
+                t0.elapsed()
+            ),
             Err(e) => eprintln!("{e}"),
         }
         r.unwrap();

@@ -130,10 +130,17 @@ impl<const N: usize> Ctx<'_, N> {
             }
         }
         if depth >= MAX_DEPTH {
-            return if self.holds_at(t.sup()) { self.found(t) } else { Verdict::Undecided(t) };
+            return if self.holds_at(t.sup()) {
+                self.found(t)
+            } else {
+                Verdict::Undecided(t)
+            };
         }
         let m = t.mid();
-        let (a, b) = (Interval::try_from((t.inf(), m)).unwrap(), Interval::try_from((m, t.sup())).unwrap());
+        let (a, b) = (
+            Interval::try_from((t.inf(), m)).unwrap(),
+            Interval::try_from((m, t.sup())).unwrap(),
+        );
         match self.scan(a, depth + 1) {
             Verdict::Cleared => self.scan(b, depth + 1),
             other => other,
@@ -142,7 +149,11 @@ impl<const N: usize> Ctx<'_, N> {
 }
 
 /// Scans one piece of the flow for the separation event.
-pub fn scan_piece<const N: usize>(tape: &Tape<Interval, N>, ws: &mut Workspace<Interval>, piece: &Piece<N>) -> Verdict<N> {
+pub fn scan_piece<const N: usize>(
+    tape: &Tape<Interval, N>,
+    ws: &mut Workspace<Interval>,
+    piece: &Piece<N>,
+) -> Verdict<N> {
     let t = Interval::try_from((piece.t0(), piece.t1())).unwrap();
     let mut ctx = Ctx { tape, ws, piece };
     ctx.scan(t, 0)

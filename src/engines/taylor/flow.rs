@@ -12,8 +12,18 @@ use inari::{Interval, const_interval};
 /// One proved piece of the flow.
 #[derive(Clone, Debug)]
 pub enum Piece<const N: usize> {
-    Taylor { t0: f64, t1: f64, coefs: Vec<[Interval; N]>, remainder: [Interval; N] },
-    LowOrder { t0: f64, t1: f64, x0: [Interval; N], slope: [Interval; N] },
+    Taylor {
+        t0: f64,
+        t1: f64,
+        coefs: Vec<[Interval; N]>,
+        remainder: [Interval; N],
+    },
+    LowOrder {
+        t0: f64,
+        t1: f64,
+        x0: [Interval; N],
+        slope: [Interval; N],
+    },
 }
 
 /// τ = t − t0 as an enclosure (t, t0 exact doubles; the difference may not be).
@@ -39,7 +49,12 @@ impl<const N: usize> Piece<N> {
     /// The enclosure of Φ(t) for every t in `t` (an interval inside [t0, t1]).
     pub fn enclose(&self, t: Interval) -> [Interval; N] {
         match self {
-            Piece::Taylor { t0, coefs, remainder, .. } => {
+            Piece::Taylor {
+                t0,
+                coefs,
+                remainder,
+                ..
+            } => {
                 let s = tau(t, *t0);
                 let k = coefs.len();
                 let sk = s.powi(k as i32);

@@ -17,8 +17,8 @@ pub mod tape;
 pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
 
-use crate::models::CollisionModel;
 use crate::arith::dual::Dual;
+use crate::models::CollisionModel;
 use tape::{Tape, Workspace};
 
 use inari::Interval;
@@ -74,7 +74,11 @@ pub struct RigorError {
 
 impl fmt::Display for RigorError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "not proved: {} (at T = {}, enclosure width {:e})", self.reason, self.t, self.width)
+        write!(
+            f,
+            "not proved: {} (at T = {}, enclosure width {:e})",
+            self.reason, self.t, self.width
+        )
     }
 }
 impl std::error::Error for RigorError {}
@@ -88,8 +92,16 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
-    if opts.order < 2 || !(opts.tol > 0.0) || !(opts.horizon > 0.0 && opts.horizon.is_finite()) {
-        return Err(RigorError { reason: format!("bad options: {opts:?}"), t: 0.0, width: 0.0 });
+    if opts.order < 2
+        || opts.tol.is_nan()
+        || opts.tol <= 0.0
+        || !(opts.horizon > 0.0 && opts.horizon.is_finite())
+    {
+        return Err(RigorError {
+            reason: format!("bad options: {opts:?}"),
+            t: 0.0,
+            width: 0.0,
+        });
     }
     let tape = Tape::<Interval, N>::record(|v| {
         let mut o = model.field(v).to_vec();
@@ -98,7 +110,10 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         o
     });
     let switching: Vec<usize> = tape.switching().to_vec();
-    let tapes = step::Tapes { dual: tape.map(|c| Dual::constant(*c)), plain: tape.clone() };
+    let tapes = step::Tapes {
+        dual: tape.map(|c| Dual::constant(*c)),
+        plain: tape.clone(),
+    };
     let mut ws = step::Workspaces::default();
     let mut ev_ws = Workspace::default();
     let mut x = model.initial_state();
@@ -109,11 +124,18 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
     for _ in 0..opts.max_steps {
         let w = step::width(&x);
         if !step::bounded(&x) || w > opts.max_width {
-            return Err(RigorError { reason: "the enclosure grew too wide".into(), t, width: w });
+            return Err(RigorError {
+                reason: "the enclosure grew too wide".into(),
+                t,
+                width: w,
+            });
         }
         if t >= opts.horizon {
             return Err(RigorError {
-                reason: format!("no separation before the horizon T = {} (the condition was proved to fail up to it)", opts.horizon),
+                reason: format!(
+                    "no separation before the horizon T = {} (the condition was proved to fail up to it)",
+                    opts.horizon
+                ),
                 t,
                 width: w,
             });
@@ -122,23 +144,44 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         let f = tape.eval(&x);
         let mut h_surf = f64::INFINITY;
         for &i in &switching {
-            let toward = (x[i].inf() > 0.0 && f[i].inf() < 0.0) || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
+            let toward =
+                (x[i].inf() > 0.0 && f[i].inf() < 0.0) || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
             if toward {
                 h_surf = h_surf.min(x[i].mig() / f[i].mag());
             }
         }
-        let h_max = (opts.horizon - t).min(if h_surf.is_finite() { 0.9 * h_surf } else { f64::INFINITY });
-        let out = match step::taylor_step(&tapes, &mut ws, t, &x, opts.order, opts.tol.max(1e-4 * w), h_max, opts.min_taylor_step) {
+        let h_max = (opts.horizon - t).min(if h_surf.is_finite() {
+            0.9 * h_surf
+        } else {
+            f64::INFINITY
+        });
+        let out = match step::taylor_step(
+            &tapes,
+            &mut ws,
+            t,
+            &x,
+            opts.order,
+            opts.tol.max(1e-4 * w),
+            h_max,
+            opts.min_taylor_step,
+        ) {
             Ok(o) => o,
             Err(_) => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
                 let mut h = h_low * 4.0;
                 loop {
                     if h < 1e-14 {
-                        return Err(RigorError { reason: "cannot cross a switching surface with a proved low-order step".into(), t, width: w });
+                        return Err(RigorError {
+                            reason: "cannot cross a switching surface with a proved low-order step"
+                                .into(),
+                            t,
+                            width: w,
+                        });
                     }
                     if let Some(o) = step::low_order_step(&tape, t, &x, h)
-                        && step::width(&o.x1) - w <= opts.cross_tol.max(1e-3 * w) + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
+                        && step::width(&o.x1) - w
+                            <= opts.cross_tol.max(1e-3 * w)
+                                + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
                     {
                         h_low = h;
                         break o;
@@ -155,19 +198,36 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
             }
             event::Verdict::Undecided(tt) => {
                 return Err(RigorError {
-                    reason: format!("grazing or undecidable separation for T in [{}, {}]", tt.inf(), tt.sup()),
+                    reason: format!(
+                        "grazing or undecidable separation for T in [{}, {}]",
+                        tt.inf(),
+                        tt.sup()
+                    ),
                     t,
                     width: w,
                 });
             }
         }
         if trace {
-            let kind = if matches!(out.piece, Piece::Taylor { .. }) { "T" } else { "L" };
-            eprintln!("{kind} t={t:.6e} h={:.3e} w={:.3e} x={:?}", out.piece.t1() - t, step::width(&out.x1), out.x1.map(|c| c.mid()));
+            let kind = if matches!(out.piece, Piece::Taylor { .. }) {
+                "T"
+            } else {
+                "L"
+            };
+            eprintln!(
+                "{kind} t={t:.6e} h={:.3e} w={:.3e} x={:?}",
+                out.piece.t1() - t,
+                step::width(&out.x1),
+                out.x1.map(|c| c.mid())
+            );
         }
         t = out.piece.t1();
         x = out.x1;
         flow.pieces.push(out.piece);
     }
-    Err(RigorError { reason: format!("more than {} steps", opts.max_steps), t, width: step::width(&x) })
+    Err(RigorError {
+        reason: format!("more than {} steps", opts.max_steps),
+        t,
+        width: step::width(&x),
+    })
 }

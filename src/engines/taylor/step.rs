@@ -48,7 +48,11 @@ fn hull<const N: usize>(a: &[Interval; N], b: &[Interval; N]) -> [Interval; N] {
 }
 
 /// Σ_{k<K} c_k s^k + s^K r (Horner), for an interval s.
-pub fn taylor_eval<const N: usize>(coefs: &[[Interval; N]], rem: &[Interval; N], s: Interval) -> [Interval; N] {
+pub fn taylor_eval<const N: usize>(
+    coefs: &[[Interval; N]],
+    rem: &[Interval; N],
+    s: Interval,
+) -> [Interval; N] {
     let k = coefs.len();
     let sk = s.powi(k as i32);
     std::array::from_fn(|i| {
@@ -114,8 +118,14 @@ pub fn taylor_step<const N: usize>(
     let k = order;
     let xm: [Interval; N] = std::array::from_fn(|i| point(x[i].mid()));
     let dx: [Interval; N] = std::array::from_fn(|i| x[i] - xm[i]);
-    let jm = tapes.plain.jet(&xm, k, &mut ws.point).map_err(|_| TaylorFail::AtSurface)?;
-    let jd = tapes.dual.jet(&Dual::seed(x), k, &mut ws.dual).map_err(|_| TaylorFail::AtSurface)?;
+    let jm = tapes
+        .plain
+        .jet(&xm, k, &mut ws.point)
+        .map_err(|_| TaylorFail::AtSurface)?;
+    let jd = tapes
+        .dual
+        .jet(&Dual::seed(x), k, &mut ws.dual)
+        .map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients
     let mut h = h_max;
     for c in &jm {
@@ -127,23 +137,34 @@ pub fn taylor_step<const N: usize>(
         }
     }
     // x_k(x̂) and D_k(X)·(X − x̂), and the coefficients over the whole box X (for the a-priori test)
-    let cm: Vec<[Interval; N]> = (0..k).map(|kk| std::array::from_fn(|i| jm[i][kk])).collect();
-    let cbox: Vec<[Interval; N]> = (0..k).map(|kk| std::array::from_fn(|i| jd[i][kk].v)).collect();
+    let cm: Vec<[Interval; N]> = (0..k)
+        .map(|kk| std::array::from_fn(|i| jm[i][kk]))
+        .collect();
+    let cbox: Vec<[Interval; N]> = (0..k)
+        .map(|kk| std::array::from_fn(|i| jd[i][kk].v))
+        .collect();
     let top: [Interval; N] = std::array::from_fn(|i| jd[i][k].v);
-    let dk: Vec<[[Interval; N]; N]> = (0..k).map(|kk| std::array::from_fn(|i| jd[i][kk].d)).collect();
+    let dk: Vec<[[Interval; N]; N]> = (0..k)
+        .map(|kk| std::array::from_fn(|i| jd[i][kk].d))
+        .collect();
     while h >= h_min {
         let t1 = t0 + h;
         let s = span((t1 - t0).max(h));
         let p0 = taylor_eval(&cbox, &top, s);
         let mut y = inflate(&p0, 0.5, 1e-300);
         for _ in 0..4 {
-            let Ok(jy) = tapes.plain.jet(&y, k, &mut ws.apriori) else { break };
+            let Ok(jy) = tapes.plain.jet(&y, k, &mut ws.apriori) else {
+                break;
+            };
             let rem: [Interval; N] = std::array::from_fn(|i| jy[i][k]);
             let ynew = taylor_eval(&cbox, &rem, s);
             if subset(&ynew, &y) {
                 // the remainder's width is what the step adds: keep it at the tolerance
                 let hk = s.sup().powi(k as i32);
-                if rem.iter().any(|r| r.wid() * hk > tol.max(f64::EPSILON * 1e-3)) {
+                if rem
+                    .iter()
+                    .any(|r| r.wid() * hk > tol.max(f64::EPSILON * 1e-3))
+                {
                     break;
                 }
                 let tau1 = super::flow::tau(point(t1), t0);
@@ -180,7 +201,16 @@ pub fn taylor_step<const N: usize>(
                         })
                     })
                     .collect();
-                return Ok(StepOut { piece: Piece::Taylor { t0, t1, coefs, remainder: rem }, x1, apriori: ynew });
+                return Ok(StepOut {
+                    piece: Piece::Taylor {
+                        t0,
+                        t1,
+                        coefs,
+                        remainder: rem,
+                    },
+                    x1,
+                    apriori: ynew,
+                });
             }
             y = inflate(&hull(&y, &ynew), 0.5, 1e-300);
         }
@@ -191,7 +221,12 @@ pub fn taylor_step<const N: usize>(
 
 /// A low-order step from (t0, X) of length h: validates Y ⊇ X + [0,h]·f(Y) and returns the
 /// piece X + τ f(Y). `None` when no a-priori box validates at this h.
-pub fn low_order_step<const N: usize>(tape: &Tape<Interval, N>, t0: f64, x: &[Interval; N], h: f64) -> Option<StepOut<N>> {
+pub fn low_order_step<const N: usize>(
+    tape: &Tape<Interval, N>,
+    t0: f64,
+    x: &[Interval; N],
+    h: f64,
+) -> Option<StepOut<N>> {
     let t1 = t0 + h;
     let s = span(t1 - t0).convex_hull(super::flow::tau(point(t1), t0));
     let field = |y: &[Interval; N]| -> [Interval; N] {
@@ -209,7 +244,16 @@ pub fn low_order_step<const N: usize>(tape: &Tape<Interval, N>, t0: f64, x: &[In
             let slope: [Interval; N] = std::array::from_fn(|i| fy[i].intersection(fy2[i]));
             let tau1 = super::flow::tau(point(t1), t0);
             let x1 = std::array::from_fn(|i| x[i] + tau1 * slope[i]);
-            return Some(StepOut { piece: Piece::LowOrder { t0, t1, x0: *x, slope }, x1, apriori: ynew });
+            return Some(StepOut {
+                piece: Piece::LowOrder {
+                    t0,
+                    t1,
+                    x0: *x,
+                    slope,
+                },
+                x1,
+                apriori: ynew,
+            });
         }
         // the next guess: the Picard image, slightly inflated (not the hull with the old guess,
         // which lets components that feed each other chase one another)
@@ -243,10 +287,16 @@ mod tests {
 
     #[test]
     fn low_order_start_step() {
-        let m = Shc::new(NdParams::<Interval>::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap());
+        let m = Shc::new(
+            NdParams::<Interval>::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27")
+                .unwrap(),
+        );
         let tape = Tape::<Interval, 3>::record(|v| m.field(v).to_vec());
         let x = m.initial_state();
-        let mx = crate::models::Maxwell::new(NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap());
+        let mx = crate::models::Maxwell::new(
+            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
+                .unwrap(),
+        );
         let tape4 = Tape::<Interval, 4>::record(|v| mx.field(v).to_vec());
         for h in [1e-6, 1e-7, 1e-8] {
             match low_order_step(&tape4, 0.0, &mx.initial_state(), h) {

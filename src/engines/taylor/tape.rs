@@ -54,7 +54,10 @@ impl<R: Real> Rec<R> {
     fn push(&self, op: Op) -> Self {
         let mut t = self.tape.borrow_mut();
         t.ops.push(op);
-        Rec { tape: self.tape.clone(), idx: t.ops.len() - 1 }
+        Rec {
+            tape: self.tape.clone(),
+            idx: t.ops.len() - 1,
+        }
     }
     fn push_const(&self, c: &R, op: impl Fn(usize) -> Op) -> Self {
         let ci = {
@@ -128,10 +131,16 @@ pub struct Tape<R, const N: usize> {
 impl<R: Real, const N: usize> Tape<R, N> {
     /// Records `f` (returning the field's N components followed by any extra outputs).
     pub fn record(f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>) -> Self {
-        let rec = Rc::new(RefCell::new(Recorder { ops: Vec::new(), consts: Vec::new() }));
+        let rec = Rc::new(RefCell::new(Recorder {
+            ops: Vec::new(),
+            consts: Vec::new(),
+        }));
         let vars: [Rec<R>; N] = std::array::from_fn(|i| {
             rec.borrow_mut().ops.push(Op::Var(i));
-            Rec { tape: rec.clone(), idx: i }
+            Rec {
+                tape: rec.clone(),
+                idx: i,
+            }
         });
         let outs = f(&vars);
         assert!(outs.len() >= N, "the first N outputs must be the field");
@@ -158,12 +167,22 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .collect();
         switching.sort_unstable();
         switching.dedup();
-        Self { ops, consts, outputs, switching }
+        Self {
+            ops,
+            consts,
+            outputs,
+            switching,
+        }
     }
 
     /// The same tape over another number type (constants converted by `f`).
     pub fn map<S: Real>(&self, f: impl Fn(&R) -> S) -> Tape<S, N> {
-        Tape { ops: self.ops.clone(), consts: self.consts.iter().map(f).collect(), outputs: self.outputs.clone(), switching: self.switching.clone() }
+        Tape {
+            ops: self.ops.clone(),
+            consts: self.consts.iter().map(f).collect(),
+            outputs: self.outputs.clone(),
+            switching: self.switching.clone(),
+        }
     }
 
     /// The state components on which the field switches (|·| kinks, branch points).
@@ -205,7 +224,12 @@ impl<R: Real, const N: usize> Tape<R, N> {
     /// The Taylor coefficients x_0..x_K of the solution of x′ = f(x), x(0) = x0 (a point or a
     /// box: for a box every coefficient encloses the coefficients of all solutions through it).
     /// Returns `coef[i][k]`.
-    pub fn jet(&self, x0: &[R; N], order: usize, ws: &mut Workspace<R>) -> Result<[Vec<R>; N], JetError> {
+    pub fn jet(
+        &self,
+        x0: &[R; N],
+        order: usize,
+        ws: &mut Workspace<R>,
+    ) -> Result<[Vec<R>; N], JetError> {
         let k1 = order + 1;
         let nops = self.ops.len();
         ws.reset(nops, k1);
@@ -224,8 +248,15 @@ impl<R: Real, const N: usize> Tape<R, N> {
                     Op::Add(a, b) => at(a, k).clone() + at(b, k).clone(),
                     Op::Sub(a, b) => at(a, k).clone() - at(b, k).clone(),
                     Op::Neg(a) => -at(a, k).clone(),
-                    Op::Mul(a, b) => mul_k(&c[a * k1..a * k1 + k + 1], &c[b * k1..b * k1 + k + 1], k),
-                    Op::Div(a, b) => div_k(&c[a * k1..a * k1 + k + 1], &c[b * k1..b * k1 + k + 1], &c[i * k1..i * k1 + k], k),
+                    Op::Mul(a, b) => {
+                        mul_k(&c[a * k1..a * k1 + k + 1], &c[b * k1..b * k1 + k + 1], k)
+                    }
+                    Op::Div(a, b) => div_k(
+                        &c[a * k1..a * k1 + k + 1],
+                        &c[b * k1..b * k1 + k + 1],
+                        &c[i * k1..i * k1 + k],
+                        k,
+                    ),
                     Op::Scale(a, q) => at(a, k).clone() * self.consts[q].clone(),
                     Op::Shift(a, q) => {
                         if k == 0 {
@@ -238,7 +269,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         if k == 0 {
                             sign[i] = self.sign_of(a, at(a, 0))?;
                         }
-                        if sign[i] > 0 { at(a, k).clone() } else { -at(a, k).clone() }
+                        if sign[i] > 0 {
+                            at(a, k).clone()
+                        } else {
+                            -at(a, k).clone()
+                        }
                     }
                     Op::Spow(a, q) | Op::Apow(a, q) => {
                         let signed = matches!(op, Op::Spow(..));
@@ -305,8 +340,24 @@ pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
 /// is s·ũ (signed) or ũ (absolute). ũ is kept in `aux`.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn pow_node<R: Real>(c: &[R], aux: &mut [R], s: i8, a: usize, i: usize, k: usize, k1: usize, q: &R, signed: bool) -> R {
-    let w = |j: usize| if s > 0 { c[a * k1 + j].clone() } else { -c[a * k1 + j].clone() };
+fn pow_node<R: Real>(
+    c: &[R],
+    aux: &mut [R],
+    s: i8,
+    a: usize,
+    i: usize,
+    k: usize,
+    k1: usize,
+    q: &R,
+    signed: bool,
+) -> R {
+    let w = |j: usize| {
+        if s > 0 {
+            c[a * k1 + j].clone()
+        } else {
+            -c[a * k1 + j].clone()
+        }
+    };
     let u = if k == 0 {
         Real::apow(&w(0), q)
     } else {
@@ -331,7 +382,11 @@ pub struct Workspace<R> {
 
 impl<R> Default for Workspace<R> {
     fn default() -> Self {
-        Self { c: Vec::new(), aux: Vec::new(), sign: Vec::new() }
+        Self {
+            c: Vec::new(),
+            aux: Vec::new(),
+            sign: Vec::new(),
+        }
     }
 }
 
@@ -356,14 +411,19 @@ mod tests {
 
     /// Coefficients by the slow route: Picard on truncated series, re-evaluating the model on
     /// `Series` K times.
-    fn series_jet<M: CollisionModel<f64, N>, const N: usize>(m: &M, x0: [f64; N], order: usize) -> [Vec<f64>; N] {
+    fn series_jet<M: CollisionModel<f64, N>, const N: usize>(
+        m: &M,
+        x0: [f64; N],
+        order: usize,
+    ) -> [Vec<f64>; N] {
         let mut x: [Vec<f64>; N] = std::array::from_fn(|i| {
             let mut v = vec![0.0; order + 1];
             v[0] = x0[i];
             v
         });
         for k in 0..order {
-            let s: [Series<f64>; N] = std::array::from_fn(|i| Series::from_coefficients(x[i].clone()));
+            let s: [Series<f64>; N] =
+                std::array::from_fn(|i| Series::from_coefficients(x[i].clone()));
             let f = m.field(&s);
             for i in 0..N {
                 x[i][k + 1] = f[i].c[k] / (k as f64 + 1.0);
@@ -374,7 +434,9 @@ mod tests {
 
     #[test]
     fn tape_jet_equals_series_jet() {
-        let shc = Shc::new(NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap());
+        let shc = Shc::new(
+            NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap(),
+        );
         let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
         assert_eq!(tape.switching(), &[0, 1, 2]);
         let x0 = [-0.3, -0.2, 0.4];
@@ -382,10 +444,17 @@ mod tests {
         let b = series_jet(&shc, x0, 12);
         for i in 0..3 {
             for k in 0..=12 {
-                assert!((a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()), "{i} {k}: {} {}", a[i][k], b[i][k]);
+                assert!(
+                    (a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()),
+                    "{i} {k}: {} {}",
+                    a[i][k],
+                    b[i][k]
+                );
             }
         }
-        let mx = Maxwell::new(NdParams::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap());
+        let mx = Maxwell::new(
+            NdParams::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap(),
+        );
         let tape = Tape::<f64, 4>::record(|v| mx.field(v).to_vec());
         assert_eq!(tape.switching(), &[1, 2, 3]);
         let x0 = [0.1, -0.3, -0.2, 0.4];
@@ -393,19 +462,41 @@ mod tests {
         let b = series_jet(&mx, x0, 10);
         for i in 0..4 {
             for k in 0..=10 {
-                assert!((a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()), "{i} {k}");
+                assert!(
+                    (a[i][k] - b[i][k]).abs() <= 1e-12 * (1.0 + b[i][k].abs()),
+                    "{i} {k}"
+                );
             }
         }
     }
 
     #[test]
-    fn linear_model_has_no_switching_and_branch_is_refused() {
-        let lin = Shc::new(NdParams::with_admissibility(ModelKind::Shc, crate::models::Admissibility::Closed, 0.0, 0.0, 0.5, 0.0, 1.0, 1.0).unwrap());
+    fn switching_components_and_branch_points_are_found() {
+        let lin = Shc::new(
+            NdParams::with_admissibility(
+                ModelKind::Shc,
+                crate::models::Admissibility::Closed,
+                0.0,
+                0.0,
+                0.5,
+                0.0,
+                1.0,
+                1.0,
+            )
+            .unwrap(),
+        );
         let tape = Tape::<f64, 3>::record(|v| lin.field(v).to_vec());
         // n = p = 1: |X| (in σ|X|^p V) and |Z| (in Γ|Z|^n V) and |V| are kinks, even with zero factors
         assert_eq!(tape.switching(), &[0, 1, 2]);
-        let shc = Shc::new(NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap());
+        let shc = Shc::new(
+            NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap(),
+        );
         let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
-        assert_eq!(tape.jet(&[0.0, 0.0, -1.0], 5, &mut Workspace::default()), Err(JetError::Branch { var: Some(0) }));
+        // at the start X = Z = 0: the first branch met (Z's power in the Bouc–Wen rate, or X's)
+        let e = tape.jet(&[0.0, 0.0, -1.0], 5, &mut Workspace::default());
+        assert!(
+            matches!(e, Err(JetError::Branch { var: Some(0 | 1) })),
+            "{e:?}"
+        );
     }
 }

@@ -1,0 +1,129 @@
+//! CoR benchmarks: one coefficient of restitution per iteration for the four Table 1 base
+//! sets at v0 = 1, on the f64 DOP853 engine (`float_cor/*`, the paper's settings
+//! rtol 1e-10, atol 1e-12, max_step 1e-2) and on the rigorous interval Taylor engine
+//! (`rigorous_cor/*`, `TaylorOptions::default()`).
+//!
+//! Outside the timed loops each case prints once its RHS-evaluation count and steps (to
+//! compare with SciPy's `solve_ivp(method="DOP853")`, see `benches/scipy_side_by_side.py`)
+//! and the width of the rigorous e enclosure. Run with
+//! `cargo bench --bench cor`; the float/rigorous ratio is read from criterion's medians.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::scaling::nd_from_base;
+use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::{FloatOptions, impact};
+use criterion::{Criterion, criterion_group, criterion_main};
+use inari::Interval;
+
+/// (bench id, model, base set P* = B_b,Γ_b,κ,σ_b,n,p) of Table 1.
+const CASES: [(&str, ModelKind, &str); 4] = [
+    (
+        "shc_dss_v0_1",
+        ModelKind::Shc,
+        "1.43,-1.42,0.632,0.00715,1.31,1.27",
+    ),
+    (
+        "shc_dsa_v0_1",
+        ModelKind::Shc,
+        "0.63,-0.611,0.188,0.00594,1,2.02",
+    ),
+    (
+        "maxwell_dss_v0_1",
+        ModelKind::Maxwell,
+        "0.655,-0.64,0.519,0.0118,1.94,2.28",
+    ),
+    (
+        "maxwell_dsa_v0_1",
+        ModelKind::Maxwell,
+        "0.44,-0.418,0.113,0.00785,1.27,3.14",
+    ),
+];
+
+fn nd_f64(kind: ModelKind, base: &str) -> NdParams<f64> {
+    let base = NdParams::<f64>::parse(kind, base).expect("base set");
+    nd_from_base(kind, &base, &1.0).expect("P(P*, 1)")
+}
+
+fn nd_interval(kind: ModelKind, base: &str) -> NdParams<Interval> {
+    let base = NdParams::<Interval>::parse(kind, base).expect("base set");
+    let v0 = inari::interval!(1.0, 1.0).unwrap();
+    nd_from_base(kind, &base, &v0).expect("P(P*, 1)")
+}
+
+fn float_case<M: CollisionModel<f64, N>, const N: usize>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: &str,
+    model: M,
+) {
+    let opts = FloatOptions::default();
+    let r = impact(&model, &opts).expect("float CoR");
+    eprintln!(
+        "[float_cor/{id}] e = {:.17e}, ts = {:?}, nfev = {}, steps accepted = {}, rejected = {}",
+        r.e, r.ts, r.stats.nfev, r.stats.naccepted, r.stats.nrejected
+    );
+    g.bench_function(id, |b| {
+        b.iter(|| impact(black_box(&model), black_box(&opts)).unwrap().e)
+    });
+}
+
+fn rigorous_case<M: CollisionModel<Interval, N>, const N: usize>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: &str,
+    model: M,
+) {
+    let opts = TaylorOptions::default();
+    let t0 = std::time::Instant::now();
+    let r = rigorous_impact(&model, &opts);
+    let dt = t0.elapsed();
+    match &r {
+        Ok(enc) => eprintln!(
+            "[rigorous_cor/{id}] e in [{:.17e}, {:.17e}], e width = {:e}, ts width = {:e}, \
+             pieces = {}, one call {:?}",
+            enc.e.inf(),
+            enc.e.sup(),
+            enc.e.wid(),
+            enc.ts.wid(),
+            enc.flow.len(),
+            dt
+        ),
+        Err(e) => eprintln!("[rigorous_cor/{id}] FAILED ({e}) after {dt:?}: timing the failure"),
+    }
+    g.bench_function(id, |b| {
+        b.iter(|| rigorous_impact(black_box(&model), black_box(&opts)).is_ok())
+    });
+}
+
+fn float_cor(c: &mut Criterion) {
+    let mut g = c.benchmark_group("float_cor");
+    g.warm_up_time(Duration::from_secs(1));
+    g.measurement_time(Duration::from_secs(3));
+    for (id, kind, base) in CASES {
+        match kind {
+            ModelKind::Shc => float_case(&mut g, id, Shc::new(nd_f64(kind, base))),
+            ModelKind::Maxwell => float_case(&mut g, id, Maxwell::new(nd_f64(kind, base))),
+        }
+    }
+    g.finish();
+}
+
+fn rigorous_cor(c: &mut Criterion) {
+    let mut g = c.benchmark_group("rigorous_cor");
+    // ~1 s per call: 10 samples of one call each, a short warm-up.
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(5));
+    for (id, kind, base) in CASES {
+        match kind {
+            ModelKind::Shc => rigorous_case(&mut g, id, Shc::new(nd_interval(kind, base))),
+            ModelKind::Maxwell => rigorous_case(&mut g, id, Maxwell::new(nd_interval(kind, base))),
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, float_cor, rigorous_cor);
+criterion_main!(benches);

@@ -1,0 +1,269 @@
+//! The command line: clap definitions and the long help texts.
+
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::ModelKind;
+use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+const ABOUT: &str =
+    "Separation time T_s and coefficient of restitution e of the Bouc–Wen collision models";
+
+const LONG_ABOUT: &str = "\
+Separation time T_s and coefficient of restitution (CoR) e of the Bouc–Wen collision models of
+Milehins & Marghitu: the Bouc–Wen–Simon–Hunt–Crossley model (--model shc, NDBWSHCCM) and the
+Bouc–Wen–Maxwell model (--model maxwell, NDBWMCM), computed with a DOP853 integrator (the
+paper's SciPy settings) or, with --rigorous, proved enclosures from an interval Taylor engine.
+
+T_s = inf{T ≥ 0 : F ≤ 0 and V ≥ 0} (first time the contact force vanishes while the bodies
+move apart) and e = V(T_s), both nondimensional (T = t/T_c, V = v/v0).
+
+Exit codes: 0 success, 1 a case not proved (--rigorous) or an integration failure,
+2 bad input (the message names the offending value).";
+
+/// The parameter section shared by the subcommands' long help (a macro so that `concat!` can
+/// join it with the examples).
+macro_rules! parameters_help {
+    () => {
+        "\
+PARAMETERS (exactly one of --base, --nd, --physical):
+
+  --nd B,Γ,κ,σ,n,p        a nondimensional set P (one case; the impact speed is built in)
+  --base B,Γ,κ,σ_b,n,p    base parameters P* (the set at v0 = 1 m/s), with --v0
+  --physical m=…,k=…,…    physical (SI) parameters, with --v0
+
+  B   hysteresis shape: the Bouc–Wen β scaled,
+      B = (A^(p+1)/D)^(n/(p+1)) (β/A) (m/k)^(n/(p+1)) v0^(2n/(p+1)),  B > 0
+  Γ   hysteresis shape: the Bouc–Wen γ scaled as β,                   Γ ∈ (−B, B)
+  κ   elastic share κ = α/(α + α_c A^p), α_c = 1 − α,                 κ ∈ (0, 1)
+  σ   damping: σ = c v0/(D k) (shc),
+      σ = D^(1/(p+1)) (m^p k)^(1/(p+1)) v0^((p−1)/(p+1)) / c (maxwell), σ > 0
+  n   Bouc–Wen exponent,                                              n ≥ 1
+  p   Hertz exponent,                                      p ≥ 1 (maxwell: p = 1 or p ≥ 2)
+      where D = α + α_c A^p.
+  v0  impact speed [m/s]: the relative speed just before the collision, v0 > 0
+
+BASE-PARAMETER MAP 𝓟(P*, v0) (sections KVCL and MCL of the paper):
+  P = (B_b v0^(2n/(p+1)), Γ_b v0^(2n/(p+1)), κ, σ_b v0^s, n, p),
+  s = 1 for shc, s = (p−1)/(p+1) for maxwell.
+
+PHYSICAL PARAMETERS (--physical, keys in any order, SI units):
+  m      effective mass m1 m2/(m1 + m2) [kg]
+  k      contact stiffness [kg m^(1−p) s^−2] = [N m^−p]
+  c      damping [kg m^−p s^−1] (shc) or [kg s^−1] (maxwell)
+  n      Bouc–Wen exponent [1]
+  p      Hertz exponent [1]
+  alpha  α ∈ (0, 1): share of the elastic Hertz term [1]
+  beta   β ≥ 0: Bouc–Wen shape parameter [m^−n]
+  gamma  γ ∈ [−β, β]: Bouc–Wen shape parameter [m^−n]
+  A      A > 0: Bouc–Wen rate amplitude [1]
+  The scales are T_c = D^(−1/(p+1)) (m/k)^(1/(p+1)) v0^(−(p−1)/(p+1)) [s],
+  X_c = D^(−1/(p+1)) (m/k)^(1/(p+1)) v0^(2/(p+1)) [m].
+
+Decimals are read as written: with --rigorous every input is enclosed exactly (0.1 is not
+rounded to a double) and any value may be a range a..b (e.g. --v0 0.9..1.1).
+"
+    };
+}
+
+macro_rules! cor_examples {
+    () => {
+        "
+EXAMPLES:
+  The paper's DSS set (NDBWSHCCM) at v0 = 1 m/s:
+    bwcl cor --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 1
+  Several speeds, as JSON:
+    bwcl cor --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 0.5,1,2,5 --format json
+  A baseball (Table 2), physical units:
+    bwcl cor --model shc --physical m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925 --v0 2.15
+  Proved enclosures over a range of speeds:
+    bwcl cor --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 0.9..1.1 --rigorous"
+    };
+}
+
+macro_rules! trajectory_examples {
+    () => {
+        "
+EXAMPLES:
+    bwcl trajectory --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 1 --out dss.csv
+    bwcl loop --model shc --physical m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925 --v0 2.15 --physical-units"
+    };
+}
+
+#[derive(Parser, Debug)]
+#[command(name = "bwcl", version, about = ABOUT, long_about = LONG_ABOUT)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// T_s and the coefficient of restitution e, for one or several impact speeds.
+    #[command(
+        long_about = "T_s and the coefficient of restitution e = V(T_s), one case per impact speed \
+                      (or the one --nd set). A case without separation before the horizon is \
+                      reported as such (e = 0), not as a number.",
+        after_long_help = concat!(parameters_help!(), cor_examples!())
+    )]
+    Cor(CorArgs),
+    /// The trajectory up to T_s as CSV: t, the model's states, x, v, F.
+    #[command(
+        long_about = "The trajectory up to T_s (or --t-end) at --points uniform times, as CSV with \
+                      columns t, the model's states (X,Z,V for shc; R,Y,Z,W for maxwell), x, v, F. \
+                      With --rigorous: t, <state>_lo, <state>_hi, …, x_lo, x_hi, v_lo, v_hi, F_lo, \
+                      F_hi from the proved flow.",
+        after_long_help = concat!(parameters_help!(), trajectory_examples!())
+    )]
+    Trajectory(TrajectoryArgs),
+    /// The hysteresis loop (F against x) up to T_s as CSV.
+    #[command(
+        long_about = "The hysteresis loop up to T_s (or --t-end) as CSV: columns x,F \
+                      (nondimensional), or with --physical-units x_mm,F_N (the deformation |x| in \
+                      millimetres and the force in newtons, as in the paper's Fig. 4). With \
+                      --rigorous: x_lo,x_hi,F_lo,F_hi.",
+        after_long_help = concat!(parameters_help!(), trajectory_examples!())
+    )]
+    Loop(TrajectoryArgs),
+}
+
+/// The model and where its parameters come from.
+#[derive(Args, Debug, Clone)]
+#[command(group(
+    ArgGroup::new("source")
+        .required(true)
+        .multiple(false)
+        .args(["base", "nd", "physical"])
+))]
+pub struct ParamArgs {
+    /// The collision model: shc (NDBWSHCCM, Kelvin–Voigt type) or maxwell (NDBWMCM).
+    #[arg(long, value_enum)]
+    pub model: ModelArg,
+
+    /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p): the nondimensional set at v0 = 1 m/s,
+    /// mapped to each --v0 by 𝓟(P*, v0). Needs --v0.
+    #[arg(
+        long,
+        value_name = "B,Γ,κ,σ_b,n,p",
+        allow_hyphen_values = true,
+        requires = "v0"
+    )]
+    pub base: Option<String>,
+
+    /// A nondimensional parameter set P = (B, Γ, κ, σ, n, p), used as is (one case, no --v0).
+    #[arg(
+        long,
+        value_name = "B,Γ,κ,σ,n,p",
+        allow_hyphen_values = true,
+        conflicts_with = "v0"
+    )]
+    pub nd: Option<String>,
+
+    /// Physical parameters in SI units:
+    /// m=…,k=…,c=…,n=…,p=…,alpha=…,beta=…,gamma=…,A=… (see PHYSICAL PARAMETERS). Needs --v0.
+    #[arg(long, value_name = "KEY=VALUE,…", requires = "v0")]
+    pub physical: Option<String>,
+
+    /// Impact speed(s) v0 [m/s], comma-separated (e.g. 0.5,1,2); with --rigorous each may be a
+    /// range a..b.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub v0: Option<String>,
+}
+
+/// Integrator settings, float or rigorous.
+#[derive(Args, Debug, Clone)]
+pub struct EngineArgs {
+    /// Nondimensional time after which "no separation" is reported (T_s = +∞ as far as the
+    /// integration went).
+    #[arg(
+        long,
+        value_name = "T",
+        default_value_t = 100.0,
+        allow_hyphen_values = true
+    )]
+    pub horizon: f64,
+
+    /// DOP853 relative tolerance [default: 1e-10, the paper's].
+    #[arg(long, value_name = "RTOL", conflicts_with = "rigorous")]
+    pub rtol: Option<f64>,
+
+    /// DOP853 absolute tolerance [default: 1e-12, the paper's].
+    #[arg(long, value_name = "ATOL", conflicts_with = "rigorous")]
+    pub atol: Option<f64>,
+
+    /// DOP853 largest step, nondimensional [default: 1e-2, the paper's].
+    #[arg(long, value_name = "H", conflicts_with = "rigorous")]
+    pub max_step: Option<f64>,
+
+    /// Prove enclosures of T_s and e with the interval Taylor engine (parameters are enclosed
+    /// as written, ranges a..b allowed).
+    #[arg(long)]
+    pub rigorous: bool,
+
+    /// Taylor order of the rigorous engine.
+    #[arg(long, value_name = "K", requires = "rigorous",
+          default_value_t = TaylorOptions::default().order)]
+    pub order: usize,
+}
+
+#[derive(Args, Debug)]
+pub struct CorArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub engine: EngineArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Write to FILE instead of stdout (replaced only when everything succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct TrajectoryArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub engine: EngineArgs,
+    /// Number of uniform sample times (≥ 2), the first at 0 and the last at the end time.
+    #[arg(long, value_name = "N", default_value_t = 1000)]
+    pub points: usize,
+    /// End time T (nondimensional) [default: T_s, or the horizon without separation; with
+    /// --rigorous the upper bound of T_s, and T may go up to the end of the proved flow].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub t_end: Option<f64>,
+    /// With --physical: t in s, x in m, v in m/s, F in N (loop: x_mm = |x| in mm, F_N in N);
+    /// the model's states stay nondimensional.
+    #[arg(long, conflicts_with = "rigorous")]
+    pub physical_units: bool,
+    /// Write the CSV to FILE instead of stdout (created only when everything succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelArg {
+    /// NDBWSHCCM: the Bouc–Wen–Simon–Hunt–Crossley (Kelvin–Voigt type) model, states X, Z, V.
+    Shc,
+    /// NDBWMCM: the Bouc–Wen–Maxwell model, states R, Y, Z, W.
+    Maxwell,
+}
+
+impl From<ModelArg> for ModelKind {
+    fn from(m: ModelArg) -> Self {
+        match m {
+            ModelArg::Shc => ModelKind::Shc,
+            ModelArg::Maxwell => ModelKind::Maxwell,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Aligned columns with a header.
+    Table,
+    /// An array with one object per case.
+    Json,
+    /// A header and one row per case.
+    Csv,
+}

@@ -1,0 +1,333 @@
+//! The subcommands: `cor`, `trajectory` and `loop`, each on the float or the rigorous engine.
+//!
+//! Everything is validated and computed before anything is written; `cor` reports a case that
+//! could not be proved (or integrated) in its row and exits with 1, the other cases still
+//! printed.
+
+use super::args::{Cli, Command, CorArgs, TrajectoryArgs};
+use super::input::{self, Case};
+use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
+use super::{CliError, EXIT_FAILED, EXIT_OK};
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::trajectory::{Units, trajectory};
+use bwcl::observables::{FloatOptions, impact};
+use inari::Interval;
+use rayon::prelude::*;
+
+/// Runs `$body` with `$m` bound to the model of `$kind` built from `$params` (the two models
+/// have different state counts, so each arm is its own monomorphization).
+macro_rules! with_model {
+    ($kind:expr, $params:expr, |$m:ident| $body:expr) => {
+        match $kind {
+            ModelKind::Shc => {
+                let $m = Shc::new($params);
+                $body
+            }
+            ModelKind::Maxwell => {
+                let $m = Maxwell::new($params);
+                $body
+            }
+        }
+    };
+}
+
+/// Runs the parsed command; `Ok` carries the exit code (0, or 1 when a case failed).
+pub fn run(cli: Cli) -> Result<i32, CliError> {
+    match cli.command {
+        Command::Cor(a) => cor(&a),
+        Command::Trajectory(a) => curve(&a, Curve::Trajectory),
+        Command::Loop(a) => curve(&a, Curve::Loop),
+    }
+}
+
+fn cor(a: &CorArgs) -> Result<i32, CliError> {
+    input::out_path(a.out.as_deref())?;
+    let kind = ModelKind::from(a.params.model);
+    let (bytes, failed, total) = if a.engine.rigorous {
+        let opts = input::taylor_options(&a.engine)?;
+        let cases = input::cases::<Interval>(&a.params)?;
+        let rows: Vec<RigorousRow> = cases
+            .par_iter()
+            .map(|c| rigorous_row(kind, c, &opts))
+            .collect();
+        let failed = rows.iter().filter(|r| !r.proved).count();
+        (output::rigorous_cor(&rows, a.format)?, failed, rows.len())
+    } else {
+        let opts = input::float_options(&a.engine)?;
+        let cases = input::cases::<f64>(&a.params)?;
+        let rows: Vec<FloatRow> = cases
+            .par_iter()
+            .map(|c| float_row(kind, c, &opts))
+            .collect();
+        let failed = rows.iter().filter(|r| r.error.is_some()).count();
+        (output::float_cor(&rows, a.format)?, failed, rows.len())
+    };
+    output::emit(a.out.as_deref(), &bytes)?;
+    if failed > 0 {
+        let what = if a.engine.rigorous {
+            "not proved"
+        } else {
+            "not integrated"
+        };
+        eprintln!("bwcl: {failed} of {total} case(s) {what} (the reason is in the output)");
+        Ok(EXIT_FAILED)
+    } else {
+        Ok(EXIT_OK)
+    }
+}
+
+fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
+    ParamsOut {
+        b: p.b,
+        gamma: p.gamma,
+        kappa: p.kappa,
+        sigma: p.sigma,
+        n: p.n,
+        p: p.p,
+    }
+}
+
+fn params_interval(p: &NdParams<Interval>) -> ParamsOut<[f64; 2]> {
+    ParamsOut {
+        b: bounds(p.b),
+        gamma: bounds(p.gamma),
+        kappa: bounds(p.kappa),
+        sigma: bounds(p.sigma),
+        n: bounds(p.n),
+        p: bounds(p.p),
+    }
+}
+
+/// T_s and e of one case on the float engine.
+fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
+    let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts)
+        .map(|r| (r.ts, r.e, r.stats)));
+    let t_c = c.scales.as_ref().map(|s| s.t_c);
+    let mut row = FloatRow {
+        model: kind.name(),
+        v0: c.v0,
+        separated: false,
+        ts: None,
+        e: None,
+        ts_seconds: t_c.map(|_| None),
+        t_c,
+        nfev: 0,
+        steps: 0,
+        horizon: opts.horizon,
+        params: params_f64(&c.params),
+        error: None,
+    };
+    match res {
+        Ok((ts, e, stats)) => {
+            row.separated = ts.is_some();
+            row.ts = ts;
+            row.e = Some(e);
+            row.ts_seconds = t_c.map(|tc| ts.map(|t| t * tc));
+            row.nfev = stats.nfev;
+            row.steps = stats.naccepted;
+        }
+        Err(err) => row.error = Some(err.to_string()),
+    }
+    row
+}
+
+/// Enclosures of T_s and e of one case on the rigorous engine.
+fn rigorous_row(kind: ModelKind, c: &Case<Interval>, opts: &TaylorOptions) -> RigorousRow {
+    let res = with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
+        .map(|enc| (enc.ts, enc.e)));
+    let mut row = RigorousRow {
+        model: kind.name(),
+        v0: c.v0.map(bounds),
+        proved: false,
+        separated: false,
+        ts: None,
+        width_ts: None,
+        e: None,
+        width_e: None,
+        ts_seconds: c.scales.as_ref().map(|_| None),
+        horizon: opts.horizon,
+        order: opts.order,
+        params: params_interval(&c.params),
+        reason: None,
+    };
+    match res {
+        Ok((ts, e)) => {
+            row.proved = true;
+            row.separated = true;
+            row.ts = Some(bounds(ts));
+            row.width_ts = Some(width(ts));
+            row.e = Some(bounds(e));
+            row.width_e = Some(width(e));
+            row.ts_seconds = c.scales.as_ref().map(|s| Some(bounds(ts * s.t_c)));
+        }
+        Err(err) => row.reason = Some(err.to_string()),
+    }
+    row
+}
+
+/// Which CSV `curve` writes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Curve {
+    /// t, the states, x, v, F.
+    Trajectory,
+    /// x, F (or x_mm, F_N).
+    Loop,
+}
+
+/// A CSV: the header and the rows, already formatted.
+type Csv = (Vec<String>, Vec<Vec<String>>);
+
+fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
+    input::out_path(a.out.as_deref())?;
+    let kind = ModelKind::from(a.params.model);
+    let points = input::points(a.points)?;
+    let t_end = input::t_end(a.t_end)?;
+    if a.physical_units && a.params.physical.is_none() {
+        return Err(CliError::Input(
+            "--physical-units needs --physical (the scales come from the physical parameters)"
+                .into(),
+        ));
+    }
+    let (head, rows) = if a.engine.rigorous {
+        let opts = input::taylor_options(&a.engine)?;
+        let case = input::single_case::<Interval>(&a.params)?;
+        with_model!(kind, case.params, |m| rigorous_curve(
+            &m, &opts, t_end, points, what
+        ))?
+    } else {
+        let opts = input::float_options(&a.engine)?;
+        let case = input::single_case::<f64>(&a.params)?;
+        let units = match (&case.scales, a.physical_units) {
+            (Some(s), true) => Units::Physical(s.clone()),
+            _ => Units::Nondimensional,
+        };
+        with_model!(kind, case.params, |m| float_curve(
+            &m, &opts, t_end, points, &units, what
+        ))?
+    };
+    let head: Vec<&str> = head.iter().map(String::as_str).collect();
+    let bytes = output::csv(&head, rows)?;
+    output::emit(a.out.as_deref(), &bytes)?;
+    Ok(EXIT_OK)
+}
+
+/// Samples on the float engine's dense output.
+fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
+    model: &M,
+    opts: &FloatOptions,
+    t_end: Option<f64>,
+    points: usize,
+    units: &Units,
+    what: Curve,
+) -> Result<Csv, CliError> {
+    let failed = |e: bwcl::observables::ImpactError| CliError::Failed(e.to_string());
+    let end = match t_end {
+        Some(t) => t,
+        None => match impact(model, opts).map_err(failed)?.ts {
+            Some(ts) => ts,
+            None => {
+                eprintln!(
+                    "bwcl: note: no separation before the horizon T = {}; the samples end there",
+                    num(opts.horizon)
+                );
+                opts.horizon
+            }
+        },
+    };
+    let samples = trajectory(model, opts, Some(end), points, units).map_err(failed)?;
+    let physical = matches!(units, Units::Physical(_));
+    let (head, rows): (Vec<String>, Vec<Vec<String>>) = match what {
+        Curve::Trajectory => {
+            let mut head = vec!["t".to_string()];
+            head.extend(M::STATE_NAMES.iter().map(|s| s.to_string()));
+            head.extend(["x", "v", "F"].map(String::from));
+            let rows = samples
+                .iter()
+                .map(|s| {
+                    let mut r = vec![num(s.t)];
+                    r.extend(s.state.iter().map(|&y| num(y)));
+                    r.extend([num(s.x), num(s.v), num(s.force)]);
+                    r
+                })
+                .collect();
+            (head, rows)
+        }
+        Curve::Loop if physical => (
+            vec!["x_mm".into(), "F_N".into()],
+            samples
+                .iter()
+                .map(|s| vec![num(s.x.abs() * 1e3), num(s.force)])
+                .collect(),
+        ),
+        Curve::Loop => (
+            vec!["x".into(), "F".into()],
+            samples
+                .iter()
+                .map(|s| vec![num(s.x), num(s.force)])
+                .collect(),
+        ),
+    };
+    Ok((head, rows))
+}
+
+/// Samples of the proved flow: the enclosure of every column at each grid time.
+fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
+    model: &M,
+    opts: &TaylorOptions,
+    t_end: Option<f64>,
+    points: usize,
+    what: Curve,
+) -> Result<Csv, CliError> {
+    let enc = rigorous_impact(model, opts).map_err(|e| CliError::Failed(e.to_string()))?;
+    let flow_end = enc.flow.t_end();
+    let end = match t_end {
+        Some(t) if t > flow_end => {
+            return Err(CliError::Failed(format!(
+                "--t-end {t} lies beyond the proved flow, which ends at T = {flow_end}"
+            )));
+        }
+        Some(t) => t,
+        // up to T_s (its upper bound), as the float curves; the flow reaches a little past it
+        None => enc.ts.sup().min(flow_end),
+    };
+    let names: Vec<&str> = match what {
+        Curve::Trajectory => M::STATE_NAMES
+            .iter()
+            .copied()
+            .chain(["x", "v", "F"])
+            .collect(),
+        Curve::Loop => vec!["x", "F"],
+    };
+    let mut head: Vec<String> = match what {
+        Curve::Trajectory => vec!["t".into()],
+        Curve::Loop => vec![],
+    };
+    for n in &names {
+        head.push(format!("{n}_lo"));
+        head.push(format!("{n}_hi"));
+    }
+    let mut rows = Vec::with_capacity(points);
+    for i in 0..points {
+        let t = end * i as f64 / (points - 1) as f64;
+        let s = enc.flow.enclose(t).ok_or_else(|| {
+            CliError::Failed(format!("the proved flow has no enclosure at T = {t}"))
+        })?;
+        let (x, v, f) = (model.position(&s), model.velocity(&s), model.force(&s));
+        let cols: Vec<Interval> = match what {
+            Curve::Trajectory => s.iter().copied().chain([x, v, f]).collect(),
+            Curve::Loop => vec![x, f],
+        };
+        let mut r = match what {
+            Curve::Trajectory => vec![num(t)],
+            Curve::Loop => vec![],
+        };
+        for c in cols {
+            r.push(num(c.inf()));
+            r.push(num(c.sup()));
+        }
+        rows.push(r);
+    }
+    Ok((head, rows))
+}

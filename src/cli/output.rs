@@ -1,0 +1,355 @@
+//! The writers: table, JSON and CSV for `cor`, CSV for trajectories, and the atomic output to a
+//! file or stdout.
+
+use super::CliError;
+use super::args::Format;
+use inari::Interval;
+use serde::Serialize;
+use std::io::Write;
+use std::path::Path;
+
+/// The nondimensional parameters of a case, as written to JSON.
+#[derive(Serialize, Clone, Debug)]
+pub struct ParamsOut<T> {
+    #[serde(rename = "B")]
+    pub b: T,
+    #[serde(rename = "Gamma")]
+    pub gamma: T,
+    pub kappa: T,
+    pub sigma: T,
+    pub n: T,
+    pub p: T,
+}
+
+/// One float case of `cor`.
+#[derive(Serialize, Clone, Debug)]
+pub struct FloatRow {
+    pub model: &'static str,
+    /// None for --nd.
+    pub v0: Option<f64>,
+    pub separated: bool,
+    /// None without separation before the horizon (or on failure).
+    pub ts: Option<f64>,
+    /// 0 without separation; None on failure.
+    pub e: Option<f64>,
+    /// Only for --physical: T_s·T_c [s] (null without separation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ts_seconds: Option<Option<f64>>,
+    /// Only for --physical: the time scale T_c [s].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_c: Option<f64>,
+    pub nfev: usize,
+    pub steps: usize,
+    pub horizon: f64,
+    pub params: ParamsOut<f64>,
+    /// Why the integration failed (the case is then not a result).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// One rigorous case of `cor`: proved enclosures, or the reason they could not be proved.
+#[derive(Serialize, Clone, Debug)]
+pub struct RigorousRow {
+    pub model: &'static str,
+    /// The enclosure of the impact speed (a range for a..b); None for --nd.
+    pub v0: Option<[f64; 2]>,
+    pub proved: bool,
+    /// Proved: the separation happens (T_s is finite and in `ts`).
+    pub separated: bool,
+    pub ts: Option<[f64; 2]>,
+    pub width_ts: Option<f64>,
+    pub e: Option<[f64; 2]>,
+    pub width_e: Option<f64>,
+    /// Only for --physical: an enclosure of T_s·T_c [s].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ts_seconds: Option<Option<[f64; 2]>>,
+    pub horizon: f64,
+    pub order: usize,
+    pub params: ParamsOut<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+}
+
+/// The bounds of an interval.
+pub fn bounds(x: Interval) -> [f64; 2] {
+    [x.inf(), x.sup()]
+}
+
+/// hi − lo rounded upward (an upper bound of the true width).
+pub fn width(x: Interval) -> f64 {
+    let (lo, hi) = (x.inf(), x.sup());
+    match (Interval::try_from((hi, hi)), Interval::try_from((lo, lo))) {
+        (Ok(h), Ok(l)) => (h - l).sup(),
+        _ => f64::INFINITY,
+    }
+}
+
+/// A double in the shortest form that reads back exactly: plain for ordinary magnitudes,
+/// exponent form for very small or large ones.
+pub fn num(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-5..1e16).contains(&a) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// An interval bound at fixed width (17 significant digits: exact, and aligned in a table).
+fn bound(x: f64) -> String {
+    format!("{x:.16e}")
+}
+
+fn interval_text(b: [f64; 2]) -> String {
+    format!("[{}, {}]", bound(b[0]), bound(b[1]))
+}
+
+/// The v0 cell of a table or CSV.
+fn opt_num(x: Option<f64>) -> String {
+    x.map(num).unwrap_or_default()
+}
+
+/// Renders the float rows of `cor`.
+pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError> {
+    let physical = rows.iter().any(|r| r.ts_seconds.is_some());
+    let any_error = rows.iter().any(|r| r.error.is_some());
+    match format {
+        Format::Json => json(rows),
+        Format::Csv => {
+            let mut head = vec!["model", "v0", "separated", "ts", "e"];
+            if physical {
+                head.extend(["ts_seconds", "t_c"]);
+            }
+            head.extend(["nfev", "steps"]);
+            if any_error {
+                head.push("error");
+            }
+            let body = rows.iter().map(|r| {
+                let mut c = vec![
+                    r.model.to_string(),
+                    opt_num(r.v0),
+                    r.separated.to_string(),
+                    opt_num(r.ts),
+                    opt_num(r.e),
+                ];
+                if physical {
+                    c.push(opt_num(r.ts_seconds.flatten()));
+                    c.push(opt_num(r.t_c));
+                }
+                c.push(r.nfev.to_string());
+                c.push(r.steps.to_string());
+                if any_error {
+                    c.push(r.error.clone().unwrap_or_default());
+                }
+                c
+            });
+            csv(&head, body)
+        }
+        Format::Table => {
+            let mut head = vec!["model", "v0", "ts", "e"];
+            if physical {
+                head.push("ts_seconds");
+            }
+            head.extend(["nfev", "steps"]);
+            let body: Vec<Vec<String>> = rows
+                .iter()
+                .map(|r| {
+                    let v0 = r.v0.map(num).unwrap_or_else(|| "-".into());
+                    let mut c = vec![r.model.to_string(), v0];
+                    if let Some(err) = &r.error {
+                        c.push(format!("integration failed: {err}"));
+                        return c;
+                    }
+                    match r.ts {
+                        None => {
+                            c.push(format!(
+                                "no separation before the horizon T = {} (e = 0)",
+                                num(r.horizon)
+                            ));
+                            return c;
+                        }
+                        Some(ts) => {
+                            c.push(num(ts));
+                            c.push(opt_num(r.e));
+                        }
+                    }
+                    if physical {
+                        c.push(opt_num(r.ts_seconds.flatten()));
+                    }
+                    c.push(r.nfev.to_string());
+                    c.push(r.steps.to_string());
+                    c
+                })
+                .collect();
+            Ok(table(&head, &body).into_bytes())
+        }
+    }
+}
+
+/// Renders the rigorous rows of `cor`.
+pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, CliError> {
+    let physical = rows.iter().any(|r| r.ts_seconds.is_some());
+    match format {
+        Format::Json => json(rows),
+        Format::Csv => {
+            let mut head = vec![
+                "model", "v0_lo", "v0_hi", "proved", "ts_lo", "ts_hi", "width_ts", "e_lo", "e_hi",
+                "width_e",
+            ];
+            if physical {
+                head.extend(["ts_seconds_lo", "ts_seconds_hi"]);
+            }
+            head.push("reason");
+            let pair = |b: Option<[f64; 2]>| match b {
+                Some([l, h]) => [num(l), num(h)],
+                None => [String::new(), String::new()],
+            };
+            let body = rows.iter().map(|r| {
+                let mut c = vec![r.model.to_string()];
+                c.extend(pair(r.v0));
+                c.push(r.proved.to_string());
+                c.extend(pair(r.ts));
+                c.push(opt_num(r.width_ts));
+                c.extend(pair(r.e));
+                c.push(opt_num(r.width_e));
+                if physical {
+                    c.extend(pair(r.ts_seconds.flatten()));
+                }
+                c.push(r.reason.clone().unwrap_or_default());
+                c
+            });
+            csv(&head, body)
+        }
+        Format::Table => {
+            let mut head = vec!["model", "v0", "ts", "width_ts", "e", "width_e"];
+            if physical {
+                head.push("ts_seconds");
+            }
+            let body: Vec<Vec<String>> = rows
+                .iter()
+                .map(|r| {
+                    let v0 = match r.v0 {
+                        None => "-".to_string(),
+                        Some([l, h]) if l == h => num(l),
+                        Some(b) => format!("[{}, {}]", num(b[0]), num(b[1])),
+                    };
+                    let mut c = vec![r.model.to_string(), v0];
+                    match (r.ts, r.e) {
+                        (Some(ts), Some(e)) if r.proved => {
+                            c.push(interval_text(ts));
+                            c.push(opt_num(r.width_ts));
+                            c.push(interval_text(e));
+                            c.push(opt_num(r.width_e));
+                            if physical {
+                                c.push(
+                                    r.ts_seconds
+                                        .flatten()
+                                        .map(interval_text)
+                                        .unwrap_or_default(),
+                                );
+                            }
+                        }
+                        _ => {
+                            let reason = r.reason.as_deref().unwrap_or("no reason given");
+                            c.push(if reason.starts_with("not proved") {
+                                reason.to_string()
+                            } else {
+                                format!("not proved: {reason}")
+                            })
+                        }
+                    }
+                    c
+                })
+                .collect();
+            Ok(table(&head, &body).into_bytes())
+        }
+    }
+}
+
+/// Pretty JSON with a final newline.
+fn json<T: Serialize + ?Sized>(rows: &T) -> Result<Vec<u8>, CliError> {
+    let mut v = serde_json::to_vec_pretty(rows)
+        .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
+    v.push(b'\n');
+    Ok(v)
+}
+
+/// CSV with a header.
+pub fn csv<I, R>(head: &[&str], rows: I) -> Result<Vec<u8>, CliError>
+where
+    I: IntoIterator<Item = R>,
+    R: IntoIterator,
+    R::Item: AsRef<[u8]>,
+{
+    let err = |e: csv::Error| CliError::Failed(format!("writing CSV: {e}"));
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(head).map_err(err)?;
+    for r in rows {
+        w.write_record(r).map_err(err)?;
+    }
+    w.into_inner()
+        .map_err(|e| CliError::Failed(format!("writing CSV: {e}")))
+}
+
+/// Aligned columns with a header. A row shorter than the header ends with a message cell that
+/// spans the remaining columns (it does not widen them).
+fn table(head: &[&str], rows: &[Vec<String>]) -> String {
+    let len = |s: &str| s.chars().count();
+    let mut w: Vec<usize> = head.iter().map(|h| len(h)).collect();
+    for r in rows {
+        let full = r.len() == head.len();
+        for (i, c) in r.iter().enumerate() {
+            if full || i + 1 < r.len() {
+                w[i] = w[i].max(len(c));
+            }
+        }
+    }
+    let line = |cells: &mut dyn Iterator<Item = &str>| {
+        let mut s = String::new();
+        for (i, c) in cells.enumerate() {
+            if i > 0 {
+                s.push_str("  ");
+            }
+            s.push_str(c);
+            s.extend(std::iter::repeat_n(' ', w[i].saturating_sub(len(c))));
+        }
+        s.truncate(s.trim_end().len());
+        s.push('\n');
+        s
+    };
+    let mut out = line(&mut head.iter().copied());
+    for r in rows {
+        out.push_str(&line(&mut r.iter().map(String::as_str)));
+    }
+    out
+}
+
+/// Writes `bytes` to stdout, or to `path` through a temporary file in the same directory that
+/// is renamed into place (so a failed run never leaves a partial or stale-looking file).
+pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
+    let Some(path) = out else {
+        let mut so = std::io::stdout().lock();
+        return match so.write_all(bytes).and_then(|_| so.flush()) {
+            Ok(()) => Ok(()),
+            // `bwcl … | head`: the reader has what it wanted
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            Err(e) => Err(CliError::Failed(format!("writing to stdout: {e}"))),
+        };
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = path.with_file_name(format!(".{name}.bwcl-{}.tmp", std::process::id()));
+    let io = |what: &str, e: std::io::Error| {
+        CliError::Input(format!("--out '{}': {what}: {e}", path.display()))
+    };
+    std::fs::write(&tmp, bytes).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io("cannot write", e)
+    })?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io("cannot replace", e)
+    })
+}
