@@ -153,6 +153,24 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
             d: std::array::from_fn(|_| R::unbounded()),
         }
     }
+    #[inline]
+    fn mul_int(&self, k: i64) -> Self {
+        Self {
+            v: self.v.mul_int(k),
+            d: std::array::from_fn(|i| self.d[i].mul_int(k)),
+        }
+    }
+    #[inline]
+    fn mul_constant(&self, c: &Self) -> Self {
+        if c.d.iter().all(|x| x.lo() == 0.0 && x.hi() == 0.0) {
+            Self {
+                v: self.v.clone() * c.v.clone(),
+                d: std::array::from_fn(|i| self.d[i].clone() * c.v.clone()),
+            }
+        } else {
+            self.clone() * c.clone()
+        }
+    }
     fn abs(&self) -> Self {
         <Self as Scalar<R>>::abs(self)
     }

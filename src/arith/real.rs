@@ -41,6 +41,19 @@ pub trait Real:
     fn one() -> Self {
         Self::from_int(1)
     }
+    /// k·x for a small integer k (|k| ≤ 2^53). Types whose general product is costly override
+    /// it (a dual: k·v + Σ k·dᵢ εᵢ, since the constant k has no derivative part).
+    #[inline]
+    fn mul_int(&self, k: i64) -> Self {
+        self.clone() * Self::from_int(k)
+    }
+    /// x·c for a constant c of the type (for a dual: one with a zero derivative part, such as
+    /// a tape constant). Types whose general product is costly override it (a dual:
+    /// c·v + Σ c·dᵢ εᵢ); the result is the same as `x * c`.
+    #[inline]
+    fn mul_constant(&self, c: &Self) -> Self {
+        self.clone() * c.clone()
+    }
     fn abs(&self) -> Self;
     fn sqrt(&self) -> Self;
     /// x^y for x > 0.

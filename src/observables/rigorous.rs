@@ -93,4 +93,55 @@ mod tests {
         }
         r.unwrap();
     }
+
+    /// Timing of the rigorous engine (median of 5 runs): `cargo test --release --lib
+    /// rigorous_timing -- --ignored --nocapture`; `BWCL_ORDER` overrides the order.
+    #[test]
+    #[ignore]
+    fn rigorous_timing() {
+        let mut opts = TaylorOptions::default();
+        if let Some(k) = std::env::var("BWCL_ORDER")
+            .ok()
+            .and_then(|s| s.parse().ok())
+        {
+            opts.order = k;
+        }
+        let median = |f: &dyn Fn() -> (f64, usize)| {
+            let mut ts = Vec::new();
+            let mut info = (0.0, 0);
+            for _ in 0..5 {
+                let t0 = std::time::Instant::now();
+                info = f();
+                ts.push(t0.elapsed().as_secs_f64());
+            }
+            ts.sort_by(f64::total_cmp);
+            (ts[2], info)
+        };
+        let (mi, _) = shc("1.43,-1.42,0.632,0.00715,1.31,1.27");
+        let (t, (w, n)) = median(&|| {
+            let r = rigorous_impact(&mi, &opts).unwrap();
+            (r.e.wid(), r.flow.len())
+        });
+        eprintln!(
+            "K {} SHC DSS: median {:.2} ms, pieces {n}, e width {w:e}",
+            opts.order,
+            t * 1e3
+        );
+        let base =
+            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
+                .unwrap();
+        let v0: Interval = "[5]".parse().unwrap();
+        let m = Maxwell::new(
+            crate::models::scaling::nd_from_base(ModelKind::Maxwell, &base, &v0).unwrap(),
+        );
+        let (t, (w, n)) = median(&|| {
+            let r = rigorous_impact(&m, &opts).unwrap();
+            (r.e.wid(), r.flow.len())
+        });
+        eprintln!(
+            "K {} Maxwell DSA v0=5: median {:.2} ms, pieces {n}, e width {w:e}",
+            opts.order,
+            t * 1e3
+        );
+    }
 }

@@ -104,6 +104,10 @@ pub struct Workspaces<const N: usize> {
 /// ```
 ///
 /// which keeps the dependency of the recurrences on the box out of the enclosure's width.
+/// Only the orders k < kd = [`jacobian_orders`]`(K)` use the mean-value form (the jet on
+/// duals, the costly part of a step, runs to order kd − 1); for kd ≤ k < K the coefficient
+/// enclosure x_k(X) over the whole box is used (x_k(x0) ∈ x_k(X) for every x0 ∈ X), whose
+/// extra width is damped by τ^k.
 #[allow(clippy::too_many_arguments)]
 pub fn taylor_step<const N: usize>(
     tapes: &Tapes<N>,
@@ -122,9 +126,14 @@ pub fn taylor_step<const N: usize>(
         .plain
         .jet(&xm, k, &mut ws.point)
         .map_err(|_| TaylorFail::AtSurface)?;
+    let jx = tapes
+        .plain
+        .jet(x, k, &mut ws.apriori)
+        .map_err(|_| TaylorFail::AtSurface)?;
+    let kd = jacobian_orders(k);
     let jd = tapes
         .dual
-        .jet(&Dual::seed(x), k, &mut ws.dual)
+        .jet(&Dual::seed(x), kd - 1, &mut ws.dual)
         .map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients
     let mut h = h_max;
@@ -137,14 +146,21 @@ pub fn taylor_step<const N: usize>(
         }
     }
     // x_k(x̂) and D_k(X)·(X − x̂), and the coefficients over the whole box X (for the a-priori test)
-    let cm: Vec<[Interval; N]> = (0..k)
-        .map(|kk| std::array::from_fn(|i| jm[i][kk]))
-        .collect();
+    // (orders k ≥ kd: x_k(X) itself, for the whole polynomial part)
     let cbox: Vec<[Interval; N]> = (0..k)
-        .map(|kk| std::array::from_fn(|i| jd[i][kk].v))
+        .map(|kk| std::array::from_fn(|i| jx[i][kk]))
         .collect();
-    let top: [Interval; N] = std::array::from_fn(|i| jd[i][k].v);
-    let dk: Vec<[[Interval; N]; N]> = (0..k)
+    let cm: Vec<[Interval; N]> = (0..k)
+        .map(|kk| {
+            if kk < kd {
+                std::array::from_fn(|i| jm[i][kk])
+            } else {
+                cbox[kk]
+            }
+        })
+        .collect();
+    let top: [Interval; N] = std::array::from_fn(|i| jx[i][k]);
+    let dk: Vec<[[Interval; N]; N]> = (0..kd)
         .map(|kk| std::array::from_fn(|i| jd[i][kk].d))
         .collect();
     while h >= h_min {
@@ -152,6 +168,8 @@ pub fn taylor_step<const N: usize>(
         let s = span((t1 - t0).max(h));
         let p0 = taylor_eval(&cbox, &top, s);
         let mut y = inflate(&p0, 0.5, 1e-300);
+        // the next trial step as a fraction of h: halved unless the remainder says more
+        let mut shrink = 0.5;
         for _ in 0..4 {
             let Ok(jy) = tapes.plain.jet(&y, k, &mut ws.apriori) else {
                 break;
@@ -161,10 +179,14 @@ pub fn taylor_step<const N: usize>(
             if subset(&ynew, &y) {
                 // the remainder's width is what the step adds: keep it at the tolerance
                 let hk = s.sup().powi(k as i32);
-                if rem
-                    .iter()
-                    .any(|r| r.wid() * hk > tol.max(f64::EPSILON * 1e-3))
-                {
+                let tol_rem = tol.max(f64::EPSILON * 1e-3);
+                let wrem = rem.iter().map(|r| r.wid()).fold(0.0, f64::max) * hk;
+                if wrem.is_nan() || wrem > tol_rem {
+                    // only the remainder is too wide: it scales like h^K, so aim just below
+                    // the tolerance (a heuristic for the next trial; it is validated anew)
+                    if wrem.is_finite() {
+                        shrink = (0.9 * (tol_rem / wrem).powf(1.0 / k as f64)).clamp(0.1, 0.9);
+                    }
                     break;
                 }
                 let tau1 = super::flow::tau(point(t1), t0);
@@ -187,18 +209,19 @@ pub fn taylor_step<const N: usize>(
                     }
                     acc.intersection(ynew[i])
                 });
-                // dense output: x_k(x̂) + D_k (X − x̂) per order
+                // dense output: x_k(x̂) + D_k (X − x̂) per order k < kd, x_k(X) above
                 let coefs: Vec<[Interval; N]> = cm
                     .iter()
-                    .zip(&dk)
-                    .map(|(c, d)| {
-                        std::array::from_fn(|i| {
+                    .enumerate()
+                    .map(|(kk, c)| match dk.get(kk) {
+                        Some(d) => std::array::from_fn(|i| {
                             let mut acc = c[i];
                             for j in 0..N {
                                 acc = acc + d[i][j] * dx[j];
                             }
                             acc
-                        })
+                        }),
+                        None => *c,
                     })
                     .collect();
                 return Ok(StepOut {
@@ -214,9 +237,15 @@ pub fn taylor_step<const N: usize>(
             }
             y = inflate(&hull(&y, &ynew), 0.5, 1e-300);
         }
-        h *= 0.5;
+        h *= shrink;
     }
     Err(TaylorFail::TooShort)
+}
+
+/// The number of low orders whose coefficients use the mean-value form: kd = ⌈K/2⌉ + 1 (at
+/// least 1).
+pub fn jacobian_orders(order: usize) -> usize {
+    (order.div_ceil(2) + 1).min(order).max(1)
 }
 
 /// A low-order step from (t0, X) of length h: validates Y ⊇ X + [0,h]·f(Y) and returns the

@@ -257,7 +257,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         &c[i * k1..i * k1 + k],
                         k,
                     ),
-                    Op::Scale(a, q) => at(a, k).clone() * self.consts[q].clone(),
+                    Op::Scale(a, q) => at(a, k).mul_constant(&self.consts[q]),
                     Op::Shift(a, q) => {
                         if k == 0 {
                             at(a, 0).clone() + self.consts[q].clone()
@@ -337,7 +337,8 @@ pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
 
 /// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: with w̃ = s·w
 /// and ũ = w̃^q, ũ_0 = w̃_0^q, ũ_k = 1/(k w̃_0) Σ_{j<k} (q(k−j) − j) w̃_{k−j} ũ_j; the node
-/// is s·ũ (signed) or ũ (absolute). ũ is kept in `aux`.
+/// is s·ũ (signed) or ũ (absolute). ũ is kept in `aux`. The factors q(k−j) − j are constants:
+/// they multiply by [`Real::mul_constant`].
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn pow_node<R: Real>(
@@ -363,10 +364,10 @@ fn pow_node<R: Real>(
     } else {
         let mut acc = R::zero();
         for j in 0..k {
-            let f = q.clone() * R::from_int((k - j) as i64) - R::from_int(j as i64);
-            acc = acc + f * w(k - j) * aux[i * k1 + j].clone();
+            let f = q.mul_constant(&R::from_int((k - j) as i64)) - R::from_int(j as i64);
+            acc = acc + w(k - j).mul_constant(&f) * aux[i * k1 + j].clone();
         }
-        acc / (R::from_int(k as i64) * w(0))
+        acc / w(0).mul_constant(&R::from_int(k as i64))
     };
     aux[i * k1 + k] = u.clone();
     if signed && s < 0 { -u } else { u }
