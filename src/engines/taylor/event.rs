@@ -14,7 +14,7 @@
 //! e = V(Φ(T_s)) is enclosed by the flow at the enclosure of T_s (the piece's polynomial in
 //! time, not the hull of a step), intersected with [0, ∞) since V(T_s) ≥ 0 holds at T_s.
 
-use super::flow::{Piece, point};
+use super::flow::{Flow, Piece, point};
 use super::tape::{Tape, Workspace};
 use inari::{Interval, const_interval};
 
@@ -157,4 +157,39 @@ pub fn scan_piece<const N: usize>(
     let t = Interval::try_from((piece.t0(), piece.t1())).unwrap();
     let mut ctx = Ctx { tape, ws, piece };
     ctx.scan(t, 0)
+}
+
+/// The condition F ≤ 0 ∧ V ≥ 0 provably holds at every point of the box `x`.
+pub fn holds<const N: usize>(tape: &Tape<Interval, N>, x: &[Interval; N]) -> bool {
+    let o = tape.eval(x);
+    o[N].sup() <= 0.0 && o[N + 1].inf() >= 0.0
+}
+
+/// The event when T_s is only known to lie in [a, b] (all of [0, a) cleared, the condition
+/// proved at b): T_s = [a, b], Φ(T_s) in the hull of the flow over [a, b], e = V(Φ(T_s)) ∩ [0, ∞).
+pub fn between<const N: usize>(
+    tape: &Tape<Interval, N>,
+    flow: &Flow<N>,
+    a: f64,
+    b: f64,
+) -> SeparationEvent<N> {
+    let mut state: Option<[Interval; N]> = None;
+    for piece in &flow.pieces {
+        let (lo, hi) = (piece.t0().max(a), piece.t1().min(b));
+        if lo > hi {
+            continue;
+        }
+        let s = piece.enclose(Interval::try_from((lo, hi)).unwrap());
+        state = Some(match state {
+            None => s,
+            Some(h) => std::array::from_fn(|i| h[i].convex_hull(s[i])),
+        });
+    }
+    let state = state.expect("the flow covers [a, b]");
+    let e = tape.eval(&state)[N + 1].intersection(NONNEG);
+    SeparationEvent {
+        ts: Interval::try_from((a, b)).unwrap(),
+        e,
+        state,
+    }
 }

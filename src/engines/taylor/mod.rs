@@ -46,6 +46,10 @@ pub struct TaylorOptions {
     /// refined by crossing in tiny steps; likewise the truncation tolerance is at least 10⁻⁴ of
     /// the width).
     pub cross_tol: f64,
+    /// Longest stretch of time on which the separation condition may stay undecided (neither
+    /// excluded nor proved, e.g. F → 0 at a branch point) before the engine reports a grazing
+    /// separation instead of an enclosure.
+    pub event_slack: f64,
 }
 
 impl Default for TaylorOptions {
@@ -59,6 +63,7 @@ impl Default for TaylorOptions {
             min_taylor_step: 1e-8,
             low_order_step: 1e-7,
             cross_tol: 1e-16,
+            event_slack: 1e-3,
         }
     }
 }
@@ -121,6 +126,8 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
     let mut flow = Flow::default();
     let mut h_low = opts.low_order_step;
     let trace = std::env::var_os("BWCL_TRACE").is_some();
+    // start of a stretch where the separation condition was neither excluded nor proved
+    let mut pending: Option<f64> = None;
     for _ in 0..opts.max_steps {
         let w = step::width(&x);
         if !step::bounded(&x) || w > opts.max_width {
@@ -190,18 +197,30 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
                 }
             }
         };
-        match event::scan_piece(&tape, &mut ev_ws, &out.piece) {
-            event::Verdict::Cleared => {}
-            event::Verdict::Found(ev) => {
-                flow.pieces.push(out.piece);
+        let t1 = out.piece.t1();
+        let verdict = event::scan_piece(&tape, &mut ev_ws, &out.piece);
+        flow.pieces.push(out.piece);
+        match (verdict, pending) {
+            (event::Verdict::Found(ev), None) => return Ok((flow, ev)),
+            // T_s was not excluded from [p, …) but is proved by here: T_s ∈ [p, ts.sup]
+            (event::Verdict::Found(ev), Some(p)) => {
+                let ev = event::between(&tape, &flow, p, ev.ts.sup());
                 return Ok((flow, ev));
             }
-            event::Verdict::Undecided(tt) => {
+            (event::Verdict::Undecided(tt), None) => pending = Some(tt.inf()),
+            _ => {}
+        }
+        if let Some(p) = pending {
+            // the condition fails on [0, p) (every earlier time was cleared); once it provably
+            // holds at a later time t1, T_s ∈ [p, t1]
+            if event::holds(&tape, &out.x1) {
+                let ev = event::between(&tape, &flow, p, t1);
+                return Ok((flow, ev));
+            }
+            if t1 - p > opts.event_slack {
                 return Err(RigorError {
                     reason: format!(
-                        "grazing or undecidable separation for T in [{}, {}]",
-                        tt.inf(),
-                        tt.sup()
+                        "grazing or undecidable separation: the condition could neither be excluded nor proved on [{p}, {t1}]"
                     ),
                     t,
                     width: w,
@@ -209,21 +228,20 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
             }
         }
         if trace {
-            let kind = if matches!(out.piece, Piece::Taylor { .. }) {
+            let kind = if matches!(flow.pieces.last(), Some(Piece::Taylor { .. })) {
                 "T"
             } else {
                 "L"
             };
             eprintln!(
                 "{kind} t={t:.6e} h={:.3e} w={:.3e} x={:?}",
-                out.piece.t1() - t,
+                t1 - t,
                 step::width(&out.x1),
                 out.x1.map(|c| c.mid())
             );
         }
-        t = out.piece.t1();
+        t = t1;
         x = out.x1;
-        flow.pieces.push(out.piece);
     }
     Err(RigorError {
         reason: format!("more than {} steps", opts.max_steps),
