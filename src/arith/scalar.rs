@@ -28,6 +28,15 @@ pub trait Scalar<R: Real>:
     fn spow(&self, q: &R) -> Self;
     /// |self|^q.
     fn apow(&self, q: &R) -> Self;
+    /// (|self|^(q−1)·self, |self|^q): the same values as `spow` and `apow`, computed together
+    /// where that is cheaper (one power for `f64`).
+    fn spow_apow(&self, q: &R) -> (Self, Self) {
+        (self.spow(q), self.apow(q))
+    }
+    /// (|self|^(q−1)·self, |self|^(q−1)) for q > 1.
+    fn spow_base(&self, q: &R) -> (Self, Self) {
+        (self.spow(q), self.apow(&(q.clone() - R::one())))
+    }
 }
 
 impl<R: Real> Scalar<R> for R {
@@ -50,5 +59,13 @@ impl<R: Real> Scalar<R> for R {
     #[inline]
     fn apow(&self, q: &R) -> Self {
         Real::apow(self, q)
+    }
+    #[inline]
+    fn spow_apow(&self, q: &R) -> (Self, Self) {
+        Real::spow_apow(self, q)
+    }
+    #[inline]
+    fn spow_base(&self, q: &R) -> (Self, Self) {
+        Real::spow_base(self, q)
     }
 }

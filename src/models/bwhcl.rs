@@ -44,19 +44,23 @@ impl<R: Real> BoucWenHertz<R> {
     /// ż = A u − β |z|^(n−1) z |u| − γ |z|^n u (eq:BWHCL, second line).
     #[inline]
     pub fn hysteretic_rate<T: Scalar<R>>(&self, z: &T, u: &T) -> T {
-        u.scale(&self.a)
-            - (z.spow(&self.n) * u.abs()).scale(&self.beta)
-            - (z.apow(&self.n) * u.clone()).scale(&self.gamma)
+        let (zs, za) = z.spow_apow(&self.n);
+        u.scale(&self.a) - (zs * u.abs()).scale(&self.beta) - (za * u.clone()).scale(&self.gamma)
     }
 
     /// F = −α k |x|^(p−1) x − α_c k |z|^(p−1) z (eq:BWHCL, third line). With `k` = 1 this is the
     /// restoring part of F_P in both nondimensional models.
     #[inline]
     pub fn force<T: Scalar<R>>(&self, x: &T, z: &T) -> T {
-        -(x.spow(&self.p)
-            .scale(&(self.alpha.clone() * self.k.clone()))
-            + z.spow(&self.p)
-                .scale(&(self.alpha_c.clone() * self.k.clone())))
+        self.force_of(x.spow(&self.p), z.spow(&self.p))
+    }
+
+    /// The same force from the signed powers |x|^(p−1)x and |z|^(p−1)z, for callers that
+    /// need the powers for something else too.
+    #[inline]
+    pub fn force_of<T: Scalar<R>>(&self, xs: T, zs: T) -> T {
+        -(xs.scale(&(self.alpha.clone() * self.k.clone()))
+            + zs.scale(&(self.alpha_c.clone() * self.k.clone())))
     }
 }
 

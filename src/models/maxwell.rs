@@ -61,13 +61,15 @@ impl<R: Real> Maxwell<R> {
         self.force(s).scale(&(-self.params.sigma.clone()))
     }
 
-    /// |x|^(p−1), which is 1 for p = 1 (0^0 = 1 here: the field is linear then).
+    /// (|x|^(p−1)x, |x|^(p−1)), the second `None` for p = 1 (the field is linear then and
+    /// |x|^0 = 1 everywhere, 0 included).
     #[inline]
-    fn pow_pm1<T: Scalar<R>>(&self, x: &T) -> Option<T> {
+    fn powers<T: Scalar<R>>(&self, x: &T) -> (T, Option<T>) {
         if self.pm1.as_integer() == Some(0) {
-            None
+            (x.clone(), None)
         } else {
-            Some(x.apow(&self.pm1))
+            let (s, b) = x.spow_base(&self.params.p);
+            (s, Some(b))
         }
     }
 
@@ -94,12 +96,17 @@ impl<R: Real> CollisionModel<R, 4> for Maxwell<R> {
     #[inline]
     fn field<T: Scalar<R>>(&self, s: &[T; 4]) -> [T; 4] {
         let [_, y, z, w] = s;
-        let dr = self.r_rate(s);
+        let ((ys, yb), (zs, zb)) = (self.powers(y), self.powers(z));
+        // Ṙ = −σ F_P, with F_P from the same powers
+        let dr = self
+            .law
+            .force_of(ys, zs)
+            .scale(&(-self.params.sigma.clone()));
         let dz = self.law.hysteretic_rate(z, w);
         let mut dw = -dr.scale(&self.inv_sigma);
-        match (self.pow_pm1(y), self.pow_pm1(z)) {
-            (Some(yp), Some(zp)) => {
-                dw = dw - (yp * w.clone()).scale(&self.kps) - (zp * dz.clone()).scale(&self.kcps);
+        match (yb, zb) {
+            (Some(yb), Some(zb)) => {
+                dw = dw - (yb * w.clone()).scale(&self.kps) - (zb * dz.clone()).scale(&self.kcps);
             }
             _ => {
                 dw = dw - w.scale(&self.kps) - dz.scale(&self.kcps);

@@ -64,7 +64,8 @@ impl<R: Real> CollisionModel<R, 3> for Shc<R> {
     #[inline]
     fn force<T: Scalar<R>>(&self, s: &[T; 3]) -> T {
         let [x, z, v] = s;
-        self.law.force(x, z) - (x.apow(&self.params.p) * v.clone()).scale(&self.params.sigma)
+        let (xs, xa) = x.spow_apow(&self.params.p);
+        self.law.force_of(xs, z.spow(&self.params.p)) - (xa * v.clone()).scale(&self.params.sigma)
     }
 
     fn position<T: Scalar<R>>(&self, s: &[T; 3]) -> T {

@@ -93,6 +93,14 @@ fn g_of<M: CollisionModel<f64, N>, const N: usize>(m: &M, y: &[f64; N]) -> f64 {
     m.force(y).max(-m.velocity(y))
 }
 
+/// A function with the sign of g = max(F_P, −V) (its value where V ≥ 0, −V where V < 0),
+/// cheaper: F_P is only evaluated where V ≥ 0. Used to scan; the refinement uses g itself.
+#[inline]
+fn sign_g<M: CollisionModel<f64, N>, const N: usize>(m: &M, y: &[f64; N]) -> f64 {
+    let v = m.velocity(y);
+    if v < 0.0 { -v } else { m.force(y).max(-v) }
+}
+
 /// Integrates the model from its initial state and returns T_s, e = V(T_s), Φ(T_s).
 pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
     model: &M,
@@ -108,11 +116,20 @@ pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
         opts.horizon,
         opts.ode.clone(),
     )?;
+    let mut g_prev = sign_g(model, solver.y());
     while solver.step()? {
+        let g_end = sign_g(model, solver.y());
+        // A step whose ends are both well away from the set (g > 2|Δg| at both ends) is not
+        // sampled: for g to reach 0 inside it, its excursion from the chord would have to exceed
+        // twice its change across the step (|g''| h²/8 > 2|Δg|, with h ≤ max_step).
+        if g_prev > 0.0 && g_end > 0.0 && g_prev.min(g_end) > 2.0 * (g_end - g_prev).abs() {
+            g_prev = g_end;
+            continue;
+        }
         let dense = solver.dense_output();
         let (t0, t1) = (dense.t_old(), dense.t_new());
         let mut a = t0;
-        let mut ga = g_of(model, solver.y_old());
+        let mut ya = *solver.y_old();
         for i in 1..=SUBSAMPLES + 1 {
             let b = if i == SUBSAMPLES + 1 {
                 t1
@@ -124,8 +141,8 @@ pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
             } else {
                 dense.eval(b)
             };
-            let gb = g_of(model, &yb);
-            if gb <= 0.0 {
+            if sign_g(model, &yb) <= 0.0 {
+                let (ga, gb) = (g_of(model, &ya), g_of(model, &yb));
                 let ts = refine(|t| g_of(model, &dense.eval(t)), a, ga, b, gb);
                 let state = dense.eval(ts);
                 let stats = solver.stats();
@@ -138,8 +155,9 @@ pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
                 });
             }
             a = b;
-            ga = gb;
+            ya = yb;
         }
+        g_prev = g_end;
     }
     Ok(Impact {
         ts: None,
@@ -260,5 +278,55 @@ mod tests {
             )
             .is_err()
         );
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    use super::*;
+    use crate::models::{Maxwell, ModelKind, NdParams, Shc};
+
+    fn median_us(mut f: impl FnMut()) -> f64 {
+        let mut v: Vec<f64> = (0..200)
+            .map(|_| {
+                let t = std::time::Instant::now();
+                f();
+                t.elapsed().as_secs_f64() * 1e6
+            })
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v[100]
+    }
+
+    /// `cargo test --release --lib float_timing -- --ignored --nocapture`: median time of one
+    /// CoR at the paper's settings for the four Table 1 sets (v0 = 1). A measurement, not a test.
+    #[test]
+    #[ignore]
+    fn float_timing() {
+        let o = FloatOptions::default();
+        for s in [
+            "1.43,-1.42,0.632,0.00715,1.31,1.27",
+            "0.63,-0.611,0.188,0.00594,1,2.02",
+        ] {
+            let m = Shc::new(NdParams::parse(ModelKind::Shc, s).unwrap());
+            let r = impact(&m, &o).unwrap();
+            eprintln!(
+                "shc {s}: {:.1} µs, nfev {}",
+                median_us(|| drop(impact(&m, &o))),
+                r.stats.nfev
+            );
+        }
+        for s in [
+            "0.655,-0.64,0.519,0.0118,1.94,2.28",
+            "0.44,-0.418,0.113,0.00785,1.27,3.14",
+        ] {
+            let m = Maxwell::new(NdParams::parse(ModelKind::Maxwell, s).unwrap());
+            let r = impact(&m, &o).unwrap();
+            eprintln!(
+                "maxwell {s}: {:.1} µs, nfev {}",
+                median_us(|| drop(impact(&m, &o))),
+                r.stats.nfev
+            );
+        }
     }
 }
