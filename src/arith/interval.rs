@@ -48,13 +48,18 @@ pub fn enclose_decimal_or_range(s: &str) -> Result<Interval, String> {
 
 /// Lower end of |x|^(q−1)·x over x ∈ [a, a] for every q in `q` (monotone in x).
 fn spow_at(a: f64, q: Interval, upper: bool) -> f64 {
-    let m = Interval::try_from((a.abs(), a.abs())).unwrap().pow(q);
+    let m = power(Interval::try_from((a.abs(), a.abs())).unwrap(), q);
     match (a >= 0.0, upper) {
         (true, false) => m.inf(),
         (true, true) => m.sup(),
         (false, false) => -m.sup(),
         (false, true) => -m.inf(),
     }
+}
+
+/// x^q for x ≥ 0: the fast enclosure of [`super::elementary::pow`], else inari's (MPFR).
+fn power(x: Interval, q: Interval) -> Interval {
+    super::elementary::pow(x, q).unwrap_or_else(|| Interval::pow(x, q))
 }
 
 impl Real for Interval {
@@ -83,7 +88,7 @@ impl Real for Interval {
         if self.inf() < 0.0 {
             return Interval::ENTIRE;
         }
-        Interval::pow(*self, *y)
+        power(*self, *y)
     }
     fn spow(&self, q: &Self) -> Self {
         if self.is_empty() || q.is_empty() {
@@ -112,7 +117,7 @@ impl Real for Interval {
                 _ => {}
             }
         }
-        Interval::pow(Interval::abs(*self).intersection(NONNEG), *q)
+        power(Interval::abs(*self).intersection(NONNEG), *q)
     }
     fn lo(&self) -> f64 {
         self.inf()

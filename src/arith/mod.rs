@@ -7,6 +7,7 @@
 //! - [`dual`]: forward-mode dual numbers (gradients, Jacobians).
 
 pub mod dual;
+pub mod elementary;
 pub mod interval;
 pub mod real;
 pub mod scalar;

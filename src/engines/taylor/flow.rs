@@ -57,7 +57,7 @@ impl<const N: usize> Piece<N> {
             } => {
                 let s = tau(t, *t0);
                 let k = coefs.len();
-                let sk = s.powi(k as i32);
+                let sk = crate::arith::elementary::powi_nonneg(s, k as u32);
                 std::array::from_fn(|i| {
                     let mut acc = remainder[i] * sk;
                     // Horner on the polynomial part, then add the remainder term

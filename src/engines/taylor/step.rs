@@ -54,7 +54,7 @@ pub fn taylor_eval<const N: usize>(
     s: Interval,
 ) -> [Interval; N] {
     let k = coefs.len();
-    let sk = s.powi(k as i32);
+    let sk = crate::arith::elementary::powi_nonneg(s, k as u32);
     std::array::from_fn(|i| {
         let mut p = coefs[k - 1][i];
         for c in coefs.iter().rev().skip(1) {
@@ -92,6 +92,11 @@ pub struct Workspaces<const N: usize> {
     pub point: Workspace<Interval>,
     pub apriori: Workspace<Interval>,
     pub dual: Workspace<Dual<Interval, N>>,
+    /// ρ = wid(x_K(Y)) / |x_K(x̂)| of the last accepted step: how much wider the remainder
+    /// coefficient over the a-priori box is than the midpoint's. The first trial step is
+    /// shortened by ρ^(−1/K) so that it usually passes (a choice of h only; every step is
+    /// validated). 0 before the first step.
+    pub remainder_ratio: f64,
 }
 
 /// Tries a Taylor step of order K from (t0, X), at most `h_max` long, at least `h_min`.
@@ -137,13 +142,18 @@ pub fn taylor_step<const N: usize>(
         .map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients
     let mut h = h_max;
+    let mut top_m = 0.0_f64;
     for c in &jm {
+        top_m = top_m.max(c[k].mag());
         for (kk, ck) in [(k - 1, &c[k - 1]), (k, &c[k])] {
             let m = ck.mag();
             if m > 0.0 {
                 h = h.min((tol / m).powf(1.0 / kk as f64));
             }
         }
+    }
+    if ws.remainder_ratio > 1.0 {
+        h = h.min(h * 0.95 * ws.remainder_ratio.powf(-1.0 / k as f64));
     }
     // x_k(x̂) and D_k(X)·(X − x̂), and the coefficients over the whole box X (for the a-priori test)
     // (orders k ≥ kd: x_k(X) itself, for the whole polynomial part)
@@ -188,6 +198,9 @@ pub fn taylor_step<const N: usize>(
                         shrink = (0.9 * (tol_rem / wrem).powf(1.0 / k as f64)).clamp(0.1, 0.9);
                     }
                     break;
+                }
+                if top_m > 0.0 {
+                    ws.remainder_ratio = rem.iter().map(|r| r.wid()).fold(0.0, f64::max) / top_m;
                 }
                 let tau1 = super::flow::tau(point(t1), t0);
                 // J = Σ τ^k D_k at τ = t1 − t0, applied to X − x̂

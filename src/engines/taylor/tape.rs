@@ -35,6 +35,10 @@ pub enum Op {
     Spow(usize, usize),
     /// |w|^q
     Apow(usize, usize),
+    /// The other one of a pair |w|^(q−1)w, |w|^q with the same w and q: (operand, q, the node
+    /// that runs the recurrence, signed?). Both are s·ũ or ũ for the same series ũ = (s w)^q,
+    /// so only one recurrence is run (set up by [`Tape::record`]).
+    Twin(usize, usize, usize, bool),
 }
 
 #[derive(Debug, Default)]
@@ -126,6 +130,24 @@ pub struct Tape<R, const N: usize> {
     outputs: Vec<usize>,
     /// State components that are the operand of a non-analytic operation (switching surfaces).
     switching: Vec<usize>,
+    /// For each constant used as an exponent q: the factors q(k−j) − j of the power
+    /// recurrence, row k = 1..=FACTOR_ORDERS, j = 0..k (computed once, in the arithmetic of R).
+    factors: Vec<Option<Vec<R>>>,
+}
+
+/// Orders up to which the power recurrence's factors are tabulated per tape.
+const FACTOR_ORDERS: usize = 40;
+
+/// Index of factor (k, j), 1 ≤ k, j < k, in a triangular table.
+#[inline]
+fn tri(k: usize, j: usize) -> usize {
+    k * (k - 1) / 2 + j
+}
+
+/// A key identifying an operation up to its constants' values (for common subexpressions).
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum Key {
+    Op(u8, usize, usize, u64, u64),
 }
 
 impl<R: Real, const N: usize> Tape<R, N> {
@@ -144,16 +166,77 @@ impl<R: Real, const N: usize> Tape<R, N> {
         });
         let outs = f(&vars);
         assert!(outs.len() >= N, "the first N outputs must be the field");
-        let outputs = outs.iter().map(|o| o.idx).collect();
+        let outputs: Vec<usize> = outs.iter().map(|o| o.idx).collect();
         drop(outs);
         drop(vars);
-        let Recorder { ops, consts } = Rc::try_unwrap(rec).expect("tape still shared").into_inner();
+        let Recorder { ops: raw, consts } =
+            Rc::try_unwrap(rec).expect("tape still shared").into_inner();
+        // Common subexpressions (the force output repeats the field's powers): an operation on
+        // the same operands with constants of the same value is recorded once.
+        let cbits = |ci: usize| (consts[ci].lo().to_bits(), consts[ci].hi().to_bits());
+        let mut ops: Vec<Op> = Vec::with_capacity(raw.len());
+        let mut map = vec![0usize; raw.len()];
+        let mut seen: std::collections::HashMap<Key, usize> = std::collections::HashMap::new();
+        for (i, op) in raw.iter().enumerate() {
+            let m = |a: usize| map[a];
+            let (op, key) = match *op {
+                Op::Var(v) => (Op::Var(v), Key::Op(0, v, 0, 0, 0)),
+                Op::Add(a, b) => (Op::Add(m(a), m(b)), Key::Op(1, m(a), m(b), 0, 0)),
+                Op::Sub(a, b) => (Op::Sub(m(a), m(b)), Key::Op(2, m(a), m(b), 0, 0)),
+                Op::Mul(a, b) => (Op::Mul(m(a), m(b)), Key::Op(3, m(a), m(b), 0, 0)),
+                Op::Div(a, b) => (Op::Div(m(a), m(b)), Key::Op(4, m(a), m(b), 0, 0)),
+                Op::Neg(a) => (Op::Neg(m(a)), Key::Op(5, m(a), 0, 0, 0)),
+                Op::Scale(a, c) => (
+                    Op::Scale(m(a), c),
+                    Key::Op(6, m(a), 0, cbits(c).0, cbits(c).1),
+                ),
+                Op::Shift(a, c) => (
+                    Op::Shift(m(a), c),
+                    Key::Op(7, m(a), 0, cbits(c).0, cbits(c).1),
+                ),
+                Op::Abs(a) => (Op::Abs(m(a)), Key::Op(8, m(a), 0, 0, 0)),
+                Op::Spow(a, c) => (
+                    Op::Spow(m(a), c),
+                    Key::Op(9, m(a), 0, cbits(c).0, cbits(c).1),
+                ),
+                Op::Apow(a, c) => (
+                    Op::Apow(m(a), c),
+                    Key::Op(10, m(a), 0, cbits(c).0, cbits(c).1),
+                ),
+                Op::Twin(..) => unreachable!("not recorded"),
+            };
+            map[i] = *seen.entry(key).or_insert_with(|| {
+                ops.push(op);
+                ops.len() - 1
+            });
+        }
+        let outputs: Vec<usize> = outputs.iter().map(|&o| map[o]).collect::<Vec<usize>>();
+        // Twins: |w|^q after |w|^(q−1)w of the same w and q (or the reverse) reuse its series.
+        for i in 0..ops.len() {
+            let (a, c, signed) = match ops[i] {
+                Op::Spow(a, c) => (a, c, true),
+                Op::Apow(a, c) => (a, c, false),
+                _ => continue,
+            };
+            if analytic_power(&consts[c], true) || analytic_power(&consts[c], false) {
+                continue;
+            }
+            let twin = (0..i).find(|&j| match ops[j] {
+                Op::Spow(b, d) | Op::Apow(b, d) => {
+                    b == a && cbits(d) == cbits(c) && matches!(ops[j], Op::Spow(..)) != signed
+                }
+                _ => false,
+            });
+            if let Some(j) = twin {
+                ops[i] = Op::Twin(a, c, j, signed);
+            }
+        }
         let mut switching: Vec<usize> = ops
             .iter()
             .filter_map(|op| match *op {
                 Op::Abs(a) => Some((a, None)),
-                Op::Spow(a, q) => Some((a, Some((q, true)))),
-                Op::Apow(a, q) => Some((a, Some((q, false)))),
+                Op::Spow(a, q) | Op::Twin(a, q, _, true) => Some((a, Some((q, true)))),
+                Op::Apow(a, q) | Op::Twin(a, q, _, false) => Some((a, Some((q, false)))),
                 _ => None,
             })
             .filter(|&(_, q)| match q {
@@ -167,11 +250,27 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .collect();
         switching.sort_unstable();
         switching.dedup();
+        let mut factors: Vec<Option<Vec<R>>> = vec![None; consts.len()];
+        for op in &ops {
+            if let Op::Spow(_, c) | Op::Apow(_, c) = *op
+                && factors[c].is_none()
+            {
+                let q = &consts[c];
+                let mut t = Vec::with_capacity(tri(FACTOR_ORDERS + 1, 0));
+                for k in 1..=FACTOR_ORDERS {
+                    for j in 0..k {
+                        t.push(q.clone() * R::from_int((k - j) as i64) - R::from_int(j as i64));
+                    }
+                }
+                factors[c] = Some(t);
+            }
+        }
         Self {
             ops,
             consts,
             outputs,
             switching,
+            factors,
         }
     }
 
@@ -179,9 +278,14 @@ impl<R: Real, const N: usize> Tape<R, N> {
     pub fn map<S: Real>(&self, f: impl Fn(&R) -> S) -> Tape<S, N> {
         Tape {
             ops: self.ops.clone(),
-            consts: self.consts.iter().map(f).collect(),
+            consts: self.consts.iter().map(&f).collect(),
             outputs: self.outputs.clone(),
             switching: self.switching.clone(),
+            factors: self
+                .factors
+                .iter()
+                .map(|t| t.as_ref().map(|t| t.iter().map(&f).collect()))
+                .collect(),
         }
     }
 
@@ -214,7 +318,8 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 Op::Shift(a, c) => v[a].clone() + self.consts[c].clone(),
                 Op::Abs(a) => Real::abs(&v[a]),
                 Op::Spow(a, q) => Real::spow(&v[a], &self.consts[q]),
-                Op::Apow(a, q) => Real::apow(&v[a], &self.consts[q]),
+                Op::Apow(a, q) | Op::Twin(a, q, _, false) => Real::apow(&v[a], &self.consts[q]),
+                Op::Twin(a, q, _, true) => Real::spow(&v[a], &self.consts[q]),
             };
             v.push(c);
         }
@@ -275,6 +380,13 @@ impl<R: Real, const N: usize> Tape<R, N> {
                             -at(a, k).clone()
                         }
                     }
+                    Op::Twin(_, _, j, signed) => {
+                        if k == 0 {
+                            sign[i] = sign[j];
+                        }
+                        let u = aux[j * k1 + k].clone();
+                        if signed && sign[j] < 0 { -u } else { u }
+                    }
                     Op::Spow(a, q) | Op::Apow(a, q) => {
                         let signed = matches!(op, Op::Spow(..));
                         let qv = &self.consts[q];
@@ -293,13 +405,35 @@ impl<R: Real, const N: usize> Tape<R, N> {
                                 if k == 0 {
                                     sign[i] = self.sign_of(a, at(a, 0))?;
                                 }
-                                pow_node(c, aux, sign[i], a, i, k, k1, qv, signed)
+                                pow_node(
+                                    c,
+                                    aux,
+                                    sign[i],
+                                    a,
+                                    i,
+                                    k,
+                                    k1,
+                                    qv,
+                                    self.factors[q].as_deref(),
+                                    signed,
+                                )
                             }
                         } else {
                             if k == 0 {
                                 sign[i] = self.sign_of(a, at(a, 0))?;
                             }
-                            pow_node(c, aux, sign[i], a, i, k, k1, qv, signed)
+                            pow_node(
+                                c,
+                                aux,
+                                sign[i],
+                                a,
+                                i,
+                                k,
+                                k1,
+                                qv,
+                                self.factors[q].as_deref(),
+                                signed,
+                            )
                         }
                     }
                 };
@@ -350,6 +484,7 @@ fn pow_node<R: Real>(
     k: usize,
     k1: usize,
     q: &R,
+    factors: Option<&[R]>,
     signed: bool,
 ) -> R {
     let w = |j: usize| {
@@ -364,7 +499,10 @@ fn pow_node<R: Real>(
     } else {
         let mut acc = R::zero();
         for j in 0..k {
-            let f = q.mul_constant(&R::from_int((k - j) as i64)) - R::from_int(j as i64);
+            let f = match factors {
+                Some(t) if k <= FACTOR_ORDERS => t[tri(k, j)].clone(),
+                _ => q.mul_constant(&R::from_int((k - j) as i64)) - R::from_int(j as i64),
+            };
             acc = acc + w(k - j).mul_constant(&f) * aux[i * k1 + j].clone();
         }
         acc / w(0).mul_constant(&R::from_int(k as i64))
