@@ -13,5 +13,6 @@
 
 pub mod arith;
 pub mod engines;
+pub mod fit;
 pub mod models;
 pub mod observables;

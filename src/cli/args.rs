@@ -89,6 +89,19 @@ EXAMPLES:
     };
 }
 
+macro_rules! fit_examples {
+    () => {
+        "
+DATA: a CSV file with a header naming the columns v0 (impact speed, m/s, > 0) and e (CoR in
+[0, 1]); other columns are ignored, blank lines and lines starting with # are skipped.
+
+EXAMPLES:
+    bwcl fit --model shc --data paper_repro/data/synthetic_dss.csv --starts 8 --seed 1
+    bwcl fit --model maxwell --data my.csv --p1 --format json
+    bwcl cost --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --data paper_repro/data/synthetic_dss.csv"
+    };
+}
+
 #[derive(Parser, Debug)]
 #[command(name = "bwcl", version, about = ABOUT, long_about = LONG_ABOUT)]
 pub struct Cli {
@@ -124,6 +137,83 @@ pub enum Command {
         after_long_help = concat!(parameters_help!(), trajectory_examples!())
     )]
     Loop(TrajectoryArgs),
+    /// Identify base parameters P* from measured CoR data: minimize J (eq:J) by multi-start
+    /// Nelder–Mead inside 𝓟.
+    #[command(
+        long_about = "Identify the base parameters P* = (B_b, Γ_b, κ, σ_b, n, p) of a model from \
+                      measured CoR data (a CSV with the header v0,e): minimize \
+                      J = sqrt(Σ (e_i − e(𝓟(P*, v0_i)))²) (eq:J) by Nelder–Mead from --starts \
+                      seeded random points (and --init), each restarted once from its best vertex. \
+                      The search runs on a smooth bijection ℝ⁶ → 𝓟 (B = exp u1, Γ = B tanh u2, \
+                      κ = logistic u3, σ_b = exp u4, n = 1 + exp u5, p = 1 + exp u6, maxwell: \
+                      p = 2 + exp u6), so every trial set is admissible. The Maxwell model's p = 1 \
+                      is an isolated point of 𝓟 and is searched only with --p1. Prints P*, J and \
+                      the fitted curve (v0, e_data, e_model); a progress bar is shown on a \
+                      terminal.",
+        after_long_help = fit_examples!()
+    )]
+    Fit(FitArgs),
+    /// Evaluate the cost J (eq:J) of a base set P* on measured CoR data.
+    #[command(
+        long_about = "Evaluate J(v0, e, P*) = sqrt(Σ (e_i − e(𝓟(P*, v0_i)))²) (eq:J) of the base \
+                      set --base on the data of --data (a CSV with the header v0,e), with the \
+                      model's CoR at every measured speed.",
+        after_long_help = fit_examples!()
+    )]
+    Cost(CostArgs),
+}
+
+/// Output of `fit` and `cost`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReportFormat {
+    /// P*, J and the curve as aligned text.
+    Table,
+    /// One JSON object: P_star (named B, Gamma, kappa, sigma, n, p), J, the curve, ….
+    Json,
+}
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
+    #[arg(long, value_enum)]
+    pub model: ModelArg,
+    /// The measured data: CSV with the header v0,e.
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// Random starts (seeded); 0 is allowed with --init.
+    #[arg(long, value_name = "N", default_value_t = 8)]
+    pub starts: usize,
+    /// Seed of the random starts (the same seed gives the same result).
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Nelder–Mead iterations per run (each start runs once and restarts once).
+    #[arg(long, value_name = "M", default_value_t = 300)]
+    pub max_iter: u64,
+    /// An extra start: a base set P* = B,Γ,κ,σ_b,n,p (e.g. a published set to refine).
+    #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
+    pub init: Option<String>,
+    /// Search the p = 1 slice of 𝓟 (the Maxwell model's isolated p = 1; p is then fixed).
+    #[arg(long)]
+    pub p1: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
+}
+
+#[derive(Args, Debug)]
+pub struct CostArgs {
+    /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
+    #[arg(long, value_enum)]
+    pub model: ModelArg,
+    /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p).
+    #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
+    pub base: String,
+    /// The measured data: CSV with the header v0,e.
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 /// The model and where its parameters come from.

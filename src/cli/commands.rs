@@ -39,6 +39,8 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
         Command::Cor(a) => cor(&a),
         Command::Trajectory(a) => curve(&a, Curve::Trajectory),
         Command::Loop(a) => curve(&a, Curve::Loop),
+        Command::Fit(a) => super::fit::fit(&a),
+        Command::Cost(a) => super::fit::cost(&a),
     }
 }
 

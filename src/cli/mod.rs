@@ -3,6 +3,7 @@
 
 mod args;
 mod commands;
+mod fit;
 mod input;
 mod output;
 

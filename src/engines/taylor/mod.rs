@@ -29,7 +29,8 @@ use std::fmt;
 pub struct TaylorOptions {
     /// Taylor order of a regular step.
     pub order: usize,
-    /// Target local error per step (absolute, nondimensional).
+    /// Target local error per step (absolute, nondimensional). 10⁻¹⁵ measured best on the
+    /// Table 1 sets: smaller values take more steps near the branch points and end wider.
     pub tol: f64,
     /// Nondimensional time after which no separation is reported.
     pub horizon: f64,
@@ -56,7 +57,7 @@ impl Default for TaylorOptions {
     fn default() -> Self {
         Self {
             order: 20,
-            tol: 1e-18,
+            tol: 1e-15,
             horizon: 100.0,
             max_width: 1e-3,
             max_steps: 20_000,

@@ -1,0 +1,24 @@
+//! Parameter identification from CoR data (sec:ID of the paper).
+//!
+//! Given measured impact speeds ṽ0 ∈ ℝ_{>0}^M and CoRs ẽ ∈ [0, 1]^M, the quality of a base
+//! parameter set P* ∈ ℙ* is the cost (eq:J)
+//!
+//! ```text
+//! J(ṽ0, ẽ, P*) = sqrt( Σ_i (ẽ_i − e(𝓟(P*, ṽ0_i)))² )
+//! ```
+//!
+//! - [`data`]: the `v0,e` CSV reader with line-numbered errors;
+//! - [`cost`]: J and the model's CoR curve, the speeds evaluated in parallel (rayon);
+//! - [`reparam`]: the smooth bijection ℝ⁶ → 𝓟 (or ℝ⁵ → 𝓟 ∩ {p = 1}) that lets an
+//!   unconstrained optimizer search inside the admissible set;
+//! - [`nelder_mead`]: the seeded multi-start Nelder–Mead minimization of J (argmin).
+
+pub mod cost;
+pub mod data;
+pub mod nelder_mead;
+pub mod reparam;
+
+pub use cost::{CostOptions, FitCurve, cost, model_curve};
+pub use data::{CorData, DataError};
+pub use nelder_mead::{FitOptions, FitResult, Progress, StartResult, fit};
+pub use reparam::Reparam;
