@@ -36,6 +36,16 @@ pub fn point(x: f64) -> Interval {
 }
 
 impl<const N: usize> Piece<N> {
+    /// Ends the piece earlier, at t (t0 ≤ t ≤ t1): its enclosure stays valid on [t0, t].
+    pub fn truncate(&mut self, t: f64) {
+        match self {
+            Piece::Taylor { t0, t1, .. } | Piece::LowOrder { t0, t1, .. } => {
+                assert!(*t0 <= t && t <= *t1);
+                *t1 = t;
+            }
+        }
+    }
+
     pub fn t0(&self) -> f64 {
         match self {
             Piece::Taylor { t0, .. } | Piece::LowOrder { t0, .. } => *t0,

@@ -49,7 +49,8 @@ pub struct TaylorOptions {
     pub cross_tol: f64,
     /// Longest stretch of time on which the separation condition may stay undecided (neither
     /// excluded nor proved, e.g. F → 0 at a branch point) before the engine reports a grazing
-    /// separation instead of an enclosure.
+    /// separation instead of an enclosure; at least 100× the enclosure's width (a wide
+    /// enclosure, e.g. for a range of v0, spreads T_s over a correspondingly long time).
     pub event_slack: f64,
 }
 
@@ -151,7 +152,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         // time for a switching component to reach 0 at its fastest (only components moving towards 0)
         let f = tape.eval(&x);
         let mut h_surf = f64::INFINITY;
-        for &i in &switching {
+        for &i in switching.iter().filter(|i| !tape.kinks().contains(i)) {
             let toward =
                 (x[i].inf() > 0.0 && f[i].inf() < 0.0) || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
             if toward {
@@ -163,18 +164,49 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         } else {
             f64::INFINITY
         });
-        let out = match step::taylor_step(
-            &tapes,
-            &mut ws,
-            t,
-            &x,
-            opts.order,
-            opts.tol.max(1e-4 * w),
-            h_max,
-            opts.min_taylor_step,
-        ) {
-            Ok(o) => o,
-            Err(_) => {
+        // kink components continue the field from the side they are on (a Taylor step may run
+        // past the kink; it is then cut just before the proved crossing)
+        let side: [i8; N] = std::array::from_fn(|i| {
+            match (tape.kinks().contains(&i), crate::arith::Real::sign(&x[i])) {
+                (true, Some(s)) => s,
+                _ => 0,
+            }
+        });
+        let mut hm = h_max;
+        let taylor = loop {
+            match step::taylor_step(
+                &tapes,
+                &mut ws,
+                t,
+                &x,
+                opts.order,
+                opts.tol.max(1e-4 * w),
+                hm,
+                opts.min_taylor_step,
+                &side,
+            ) {
+                Err(_) => break None,
+                Ok(mut o) => match step::cut_at_kinks(&tape, &o, &side) {
+                    step::KinkCut::Whole => break Some(o),
+                    step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
+                        o.piece.truncate(tc);
+                        o.x1 = o.piece.enclose(flow::point(tc));
+                        break Some(o);
+                    }
+                    // the crossing is right ahead: a low-order step takes it
+                    step::KinkCut::Before(_) => break None,
+                    step::KinkCut::Unresolved => {
+                        hm = 0.5 * (o.piece.t1() - t);
+                        if hm < opts.min_taylor_step {
+                            break None;
+                        }
+                    }
+                },
+            }
+        };
+        let out = match taylor {
+            Some(o) => o,
+            None => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
                 let mut h = h_low * 4.0;
                 loop {
@@ -218,7 +250,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
                 let ev = event::between(&tape, &flow, p, t1);
                 return Ok((flow, ev));
             }
-            if t1 - p > opts.event_slack {
+            if t1 - p > opts.event_slack.max(100.0 * w) {
                 return Err(RigorError {
                     reason: format!(
                         "grazing or undecidable separation: the condition could neither be excluded nor proved on [{p}, {t1}]"

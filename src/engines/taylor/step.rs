@@ -123,6 +123,7 @@ pub fn taylor_step<const N: usize>(
     tol: f64,
     h_max: f64,
     h_min: f64,
+    side: &[i8; N],
 ) -> Result<StepOut<N>, TaylorFail> {
     let k = order;
     let xm: [Interval; N] = std::array::from_fn(|i| point(x[i].mid()));
@@ -131,15 +132,15 @@ pub fn taylor_step<const N: usize>(
     // the midpoint's coefficients are only needed where the mean-value form is used (k < kd)
     let jm = tapes
         .plain
-        .jet(&xm, kd - 1, &mut ws.point)
+        .jet_on(&xm, kd - 1, &mut ws.point, side)
         .map_err(|_| TaylorFail::AtSurface)?;
     let jx = tapes
         .plain
-        .jet(x, k, &mut ws.apriori)
+        .jet_on(x, k, &mut ws.apriori, side)
         .map_err(|_| TaylorFail::AtSurface)?;
     let jd = tapes
         .dual
-        .jet(&Dual::seed(x), kd - 1, &mut ws.dual)
+        .jet_on(&Dual::seed(x), kd - 1, &mut ws.dual, side)
         .map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients (over X: a thin box)
     let mut h = h_max;
@@ -182,7 +183,7 @@ pub fn taylor_step<const N: usize>(
         // the next trial step as a fraction of h: halved unless the remainder says more
         let mut shrink = 0.5;
         for _ in 0..4 {
-            let Ok(jy) = tapes.plain.jet(&y, k, &mut ws.apriori) else {
+            let Ok(jy) = tapes.plain.jet_on(&y, k, &mut ws.apriori, side) else {
                 break;
             };
             let rem: [Interval; N] = std::array::from_fn(|i| jy[i][k]);
@@ -254,6 +255,85 @@ pub fn taylor_step<const N: usize>(
         h *= shrink;
     }
     Err(TaylorFail::TooShort)
+}
+
+/// Where a Taylor step of the field continued across the kinks (`side`) is valid.
+pub enum KinkCut {
+    /// No continued kink component can reach 0 on the step: the piece is the true flow.
+    Whole,
+    /// Kink component crossings are proved to happen at or after `t` (interval Newton on the
+    /// piece's polynomial, transversality proved): the piece is the true flow on [t0, t].
+    Before(f64),
+    /// A crossing could not be excluded nor enclosed.
+    Unresolved,
+}
+
+/// Checks a Taylor piece of the continued field for crossings of its kink components.
+///
+/// For a kink component i continued from side s (x_i has the sign s at t0), the continued and
+/// true fields agree while s·x_i ≥ 0. If s·x_i > 0 on the whole a-priori box, nothing can
+/// happen. Otherwise g = x_i(t) along the piece must be monotone towards 0 (s·g′ < 0 on the
+/// piece, g′ = f_i of the continued field over the piece's enclosure) or away from it
+/// (s·g′ > 0: no crossing); a zero of a monotone g is enclosed by interval Newton
+/// N(T) = m − g(m)/g′(T), proved when N(T) ⊆ int T, and the piece is cut at its lower end.
+pub fn cut_at_kinks<const N: usize>(
+    tape: &Tape<Interval, N>,
+    out: &StepOut<N>,
+    side: &[i8; N],
+) -> KinkCut {
+    let (t0, t1) = (out.piece.t0(), out.piece.t1());
+    let whole = Interval::try_from((t0, t1)).unwrap();
+    let mut cut = t1;
+    for &i in tape.kinks() {
+        let s = side[i] as f64;
+        if side[i] == 0 {
+            continue;
+        }
+        if (s > 0.0 && out.apriori[i].inf() > 0.0) || (s < 0.0 && out.apriori[i].sup() < 0.0) {
+            continue;
+        }
+        let rate = |t: Interval| tape.eval_on(&out.piece.enclose(t), side)[i];
+        let d = rate(whole);
+        if s * d.inf() > 0.0 {
+            continue; // moving away from 0 all along: s·x_i stays ≥ s·x_i(t0) > 0
+        }
+        if !(s * d.sup() < 0.0) {
+            return KinkCut::Unresolved;
+        }
+        // towards 0: is the end still on the side?
+        let g1 = out.piece.enclose(point(t1))[i];
+        if (s > 0.0 && g1.inf() > 0.0) || (s < 0.0 && g1.sup() < 0.0) {
+            continue;
+        }
+        // interval Newton for the zero of g on T
+        let mut t = whole;
+        let mut proved = false;
+        for _ in 0..40 {
+            let m = t.mid();
+            let gm = out.piece.enclose(point(m))[i];
+            let n = point(m) - gm / rate(t);
+            let tn = t.intersection(n);
+            if tn.is_empty() {
+                return KinkCut::Unresolved;
+            }
+            if n.interior(t) {
+                proved = true;
+            }
+            if tn == t {
+                break;
+            }
+            t = tn;
+        }
+        if !proved {
+            return KinkCut::Unresolved;
+        }
+        cut = cut.min(t.inf());
+    }
+    if cut < t1 {
+        KinkCut::Before(cut)
+    } else {
+        KinkCut::Whole
+    }
 }
 
 /// The number of low orders whose coefficients use the mean-value form: kd = ⌈K/4⌉ + 1 (at

@@ -130,6 +130,9 @@ pub struct Tape<R, const N: usize> {
     outputs: Vec<usize>,
     /// State components that are the operand of a non-analytic operation (switching surfaces).
     switching: Vec<usize>,
+    /// Switching components that are kinks: the operand only of |·| (never of a non-analytic
+    /// power), so the field continued from one side is analytic across x_i = 0.
+    kinks: Vec<usize>,
     /// For each constant used as an exponent q: the factors q(k−j) − j of the power
     /// recurrence, row k = 1..=FACTOR_ORDERS, j = 0..k (computed once, in the arithmetic of R).
     factors: Vec<Option<Vec<R>>>,
@@ -250,6 +253,21 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .collect();
         switching.sort_unstable();
         switching.dedup();
+        let kinks: Vec<usize> = switching
+            .iter()
+            .copied()
+            .filter(|&v| {
+                ops.iter().all(|op| match *op {
+                    Op::Spow(a, q) | Op::Twin(a, q, _, true) => {
+                        a != v || analytic_power(&consts[q], true)
+                    }
+                    Op::Apow(a, q) | Op::Twin(a, q, _, false) => {
+                        a != v || analytic_power(&consts[q], false)
+                    }
+                    _ => true,
+                })
+            })
+            .collect();
         let mut factors: Vec<Option<Vec<R>>> = vec![None; consts.len()];
         for op in &ops {
             if let Op::Spow(_, c) | Op::Apow(_, c) = *op
@@ -270,6 +288,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             consts,
             outputs,
             switching,
+            kinks,
             factors,
         }
     }
@@ -281,12 +300,18 @@ impl<R: Real, const N: usize> Tape<R, N> {
             consts: self.consts.iter().map(&f).collect(),
             outputs: self.outputs.clone(),
             switching: self.switching.clone(),
+            kinks: self.kinks.clone(),
             factors: self
                 .factors
                 .iter()
                 .map(|t| t.as_ref().map(|t| t.iter().map(&f).collect()))
                 .collect(),
         }
+    }
+
+    /// The switching components that are kinks of |·| only (see [`Tape::jet_on`]).
+    pub fn kinks(&self) -> &[usize] {
+        &self.kinks
     }
 
     /// The state components on which the field switches (|·| kinks, branch points).
@@ -305,6 +330,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
     /// Evaluates all outputs at a point (order-0 replay) — plain interval evaluation for
     /// `R = Interval`, valid across switching surfaces.
     pub fn eval(&self, x: &[R; N]) -> Vec<R> {
+        self.eval_on(x, &[0; N])
+    }
+
+    /// [`Tape::eval`] of the field continued across kinks from `side` (see [`Tape::jet_on`]).
+    pub fn eval_on(&self, x: &[R; N], side: &[i8; N]) -> Vec<R> {
         let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
         for op in &self.ops {
             let c = match *op {
@@ -316,7 +346,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 Op::Neg(a) => -v[a].clone(),
                 Op::Scale(a, c) => v[a].clone() * self.consts[c].clone(),
                 Op::Shift(a, c) => v[a].clone() + self.consts[c].clone(),
-                Op::Abs(a) => Real::abs(&v[a]),
+                Op::Abs(a) => match self.ops[a] {
+                    Op::Var(j) if side[j] > 0 => v[a].clone(),
+                    Op::Var(j) if side[j] < 0 => -v[a].clone(),
+                    _ => Real::abs(&v[a]),
+                },
                 Op::Spow(a, q) => Real::spow(&v[a], &self.consts[q]),
                 Op::Apow(a, q) | Op::Twin(a, q, _, false) => Real::apow(&v[a], &self.consts[q]),
                 Op::Twin(a, q, _, true) => Real::spow(&v[a], &self.consts[q]),
@@ -334,6 +368,20 @@ impl<R: Real, const N: usize> Tape<R, N> {
         x0: &[R; N],
         order: usize,
         ws: &mut Workspace<R>,
+    ) -> Result<[Vec<R>; N], JetError> {
+        self.jet_on(x0, order, ws, &[0; N])
+    }
+
+    /// [`Tape::jet`] of the field continued across kinks: for each kink component i with
+    /// `side[i]` = ±1, |x_i| is expanded as side[i]·x_i whatever the sign of x_i in the box —
+    /// the analytic continuation of the field from that side (|·| of a kink component is the
+    /// only non-analytic operation on it, see [`Tape::kinks`]). 0 = no continuation.
+    pub fn jet_on(
+        &self,
+        x0: &[R; N],
+        order: usize,
+        ws: &mut Workspace<R>,
+        side: &[i8; N],
     ) -> Result<[Vec<R>; N], JetError> {
         let k1 = order + 1;
         let nops = self.ops.len();
@@ -372,7 +420,10 @@ impl<R: Real, const N: usize> Tape<R, N> {
                     }
                     Op::Abs(a) => {
                         if k == 0 {
-                            sign[i] = self.sign_of(a, at(a, 0))?;
+                            sign[i] = match self.ops[a] {
+                                Op::Var(v) if side[v] != 0 => side[v],
+                                _ => self.sign_of(a, at(a, 0))?,
+                            };
                         }
                         if sign[i] > 0 {
                             at(a, k).clone()
@@ -578,6 +629,8 @@ mod tests {
         );
         let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
         assert_eq!(tape.switching(), &[0, 1, 2]);
+        // |V| is a kink; X and Z are branch points of the real powers
+        assert_eq!(tape.kinks(), &[2]);
         let x0 = [-0.3, -0.2, 0.4];
         let a = tape.jet(&x0, 12, &mut Workspace::default()).unwrap();
         let b = series_jet(&shc, x0, 12);
@@ -596,6 +649,7 @@ mod tests {
         );
         let tape = Tape::<f64, 4>::record(|v| mx.field(v).to_vec());
         assert_eq!(tape.switching(), &[1, 2, 3]);
+        assert_eq!(tape.kinks(), &[3]);
         let x0 = [0.1, -0.3, -0.2, 0.4];
         let a = tape.jet(&x0, 10, &mut Workspace::default()).unwrap();
         let b = series_jet(&mx, x0, 10);
@@ -627,6 +681,9 @@ mod tests {
         let tape = Tape::<f64, 3>::record(|v| lin.field(v).to_vec());
         // n = p = 1: |X| (in σ|X|^p V) and |Z| (in Γ|Z|^n V) and |V| are kinks, even with zero factors
         assert_eq!(tape.switching(), &[0, 1, 2]);
+        // only |V| is a plain |·|; |X|^p, |Z|^n with p = n = 1 are powers, treated (safely) as
+        // branch points
+        assert_eq!(tape.kinks(), &[2]);
         let shc = Shc::new(
             NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap(),
         );
