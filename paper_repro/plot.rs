@@ -1,0 +1,201 @@
+//! SVG and PNG plots with plotters: line/marker series and bands, in the paper's grey scale.
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+use std::path::Path;
+
+/// Font files tried, in order, after $BWCL_FONT (PNG and SVG both need a font for the text
+/// layout; Debian/Ubuntu: `apt-get install fonts-dejavu-core`).
+const FONT_PATHS: [&str; 6] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
+    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+    "/usr/share/fonts/truetype/freefont/FreeSans.ttf",
+];
+
+/// Registers a sans-serif font for plotters; returns the file used.
+pub fn init_font() -> Result<String, String> {
+    let mut tried = Vec::new();
+    let env = std::env::var("BWCL_FONT").ok();
+    for path in env.iter().map(String::as_str).chain(FONT_PATHS) {
+        tried.push(path.to_string());
+        if let Ok(bytes) = std::fs::read(path) {
+            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+            for style in [FontStyle::Normal, FontStyle::Bold, FontStyle::Italic] {
+                plotters::style::register_font("sans-serif", style, bytes)
+                    .map_err(|_| format!("'{path}' is not a usable TrueType font"))?;
+            }
+            return Ok(path.to_string());
+        }
+    }
+    Err(format!(
+        "no font found for the plots (tried {}); install fonts-dejavu-core or set BWCL_FONT \
+         to a .ttf file",
+        tried.join(", ")
+    ))
+}
+
+/// What a series draws.
+pub enum Series {
+    /// A polyline.
+    Line {
+        label: String,
+        grey: u8,
+        dashed: bool,
+        points: Vec<(f64, f64)>,
+    },
+    /// Filled or hollow circles.
+    Marks {
+        label: String,
+        grey: u8,
+        filled: bool,
+        points: Vec<(f64, f64)>,
+    },
+    /// A band between lo(x) and hi(x), drawn as a filled polygon and its two edges.
+    Band {
+        label: String,
+        grey: u8,
+        points: Vec<(f64, f64, f64)>,
+    },
+}
+
+/// One chart.
+pub struct Chart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub x_range: (f64, f64),
+    pub y_range: (f64, f64),
+    pub series: Vec<Series>,
+    /// Legend in the upper left (else upper right).
+    pub legend_left: bool,
+}
+
+fn grey(g: u8) -> RGBColor {
+    RGBColor(g, g, g)
+}
+
+fn draw<DB: DrawingBackend>(
+    area: DrawingArea<DB, plotters::coord::Shift>,
+    c: &Chart,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("plot '{}': {x:?}", c.title);
+    area.fill(&WHITE).map_err(e)?;
+    let mut chart = ChartBuilder::on(&area)
+        .caption(&c.title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(c.x_range.0..c.x_range.1, c.y_range.0..c.y_range.1)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc(&c.x_label)
+        .y_desc(&c.y_label)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(e)?;
+    for s in &c.series {
+        match s {
+            Series::Line {
+                label,
+                grey: g,
+                dashed,
+                points,
+            } => {
+                let style = grey(*g).stroke_width(2);
+                let anno = if *dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(points.iter().copied(), 6, 4, style))
+                        .map_err(e)?
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(points.iter().copied(), style))
+                        .map_err(e)?
+                };
+                let col = grey(*g);
+                anno.label(label).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2))
+                });
+            }
+            Series::Marks {
+                label,
+                grey: g,
+                filled,
+                points,
+            } => {
+                let col = grey(*g);
+                let style = if *filled {
+                    col.filled()
+                } else {
+                    col.stroke_width(2)
+                };
+                let r = if *filled { 3 } else { 6 };
+                chart
+                    .draw_series(points.iter().map(|&(x, y)| Circle::new((x, y), r, style)))
+                    .map_err(e)?
+                    .label(label)
+                    .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+            }
+            Series::Band {
+                label,
+                grey: g,
+                points,
+            } => {
+                let col = grey(*g);
+                let mut poly: Vec<(f64, f64)> = points.iter().map(|&(x, lo, _)| (x, lo)).collect();
+                poly.extend(points.iter().rev().map(|&(x, _, hi)| (x, hi)));
+                chart
+                    .draw_series(std::iter::once(Polygon::new(poly, col.mix(0.35).filled())))
+                    .map_err(e)?
+                    .label(label)
+                    .legend(move |(x, y)| {
+                        Rectangle::new([(x, y - 5), (x + 20, y + 5)], col.mix(0.35).filled())
+                    });
+                for edge in [0, 1] {
+                    chart
+                        .draw_series(LineSeries::new(
+                            points
+                                .iter()
+                                .map(|&(x, lo, hi)| (x, if edge == 0 { lo } else { hi })),
+                            col.stroke_width(1),
+                        ))
+                        .map_err(e)?;
+                }
+            }
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(if c.legend_left {
+            SeriesLabelPosition::UpperLeft
+        } else {
+            SeriesLabelPosition::UpperRight
+        })
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    area.present().map_err(e)?;
+    Ok(())
+}
+
+/// Writes `stem.svg` and `stem.png` (800×600).
+pub fn save(chart: &Chart, stem: &Path) -> Result<Vec<String>, String> {
+    let svg = stem.with_extension("svg");
+    let png = stem.with_extension("png");
+    draw(SVGBackend::new(&svg, (800, 600)).into_drawing_area(), chart)?;
+    draw(
+        BitMapBackend::new(&png, (800, 600)).into_drawing_area(),
+        chart,
+    )?;
+    Ok(vec![svg.display().to_string(), png.display().to_string()])
+}

@@ -1,0 +1,196 @@
+//! Core of `proof-certificate`: proved enclosures of T_s and e for the Table 1 sets at the
+//! paper's speeds (`nd_from_base` with interval parameters enclosing the decimals, then
+//! `rigorous_impact`), their JSON certificate, and its independent check.
+//!
+//! Bounds are stored as exact doubles twice: `{:e}` (Rust prints the shortest decimal that
+//! parses back to the same double) and the IEEE-754 bit pattern in hex; `check` reads the bits.
+#![allow(dead_code)]
+
+use bwcl::arith::Real;
+use bwcl::engines::dop853::Options;
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::scaling::nd_from_base;
+use bwcl::models::{Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::{FloatOptions, impact};
+use inari::Interval;
+use serde_json::{Value, json};
+
+pub const SETS: [(&str, ModelKind, &str); 4] = [
+    (
+        "SHC DSS",
+        ModelKind::Shc,
+        "1.43,-1.42,0.632,0.00715,1.31,1.27",
+    ),
+    (
+        "SHC DSA",
+        ModelKind::Shc,
+        "0.63,-0.611,0.188,0.00594,1,2.02",
+    ),
+    (
+        "Maxwell DSS",
+        ModelKind::Maxwell,
+        "0.655,-0.64,0.519,0.0118,1.94,2.28",
+    ),
+    (
+        "Maxwell DSA",
+        ModelKind::Maxwell,
+        "0.44,-0.418,0.113,0.00785,1.27,3.14",
+    ),
+];
+
+pub const SPEEDS: [&str; 7] = ["0.1", "0.5", "1", "2", "3", "4", "5"];
+
+/// Proved (T_s, e) for a base set at v0 (decimals enclosed as written).
+pub fn enclose(kind: ModelKind, base: &str, v0: &str) -> Result<(Interval, Interval), String> {
+    let b = NdParams::<Interval>::parse(kind, base).map_err(|e| e.0)?;
+    let v = <Interval as Real>::parse_decimal(v0)?;
+    let p = nd_from_base(kind, &b, &v).map_err(|e| e.0)?;
+    let opts = TaylorOptions::default();
+    let r = match kind {
+        ModelKind::Shc => rigorous_impact(&Shc::new(p), &opts).map(|r| (r.ts, r.e)),
+        ModelKind::Maxwell => rigorous_impact(&Maxwell::new(p), &opts).map(|r| (r.ts, r.e)),
+    };
+    r.map_err(|e| format!("{e}"))
+}
+
+/// e from DOP853 at rtol 1e-13 (f64 parameters: the nearest doubles to the decimals).
+pub fn float_e(kind: ModelKind, base: &str, v0: &str) -> Result<f64, String> {
+    let b = NdParams::<f64>::parse(kind, base).map_err(|e| e.0)?;
+    let v: f64 = v0.parse().map_err(|_| format!("bad v0 {v0}"))?;
+    let p = nd_from_base(kind, &b, &v).map_err(|e| e.0)?;
+    let opts = FloatOptions {
+        ode: Options {
+            rtol: 1e-13,
+            atol: 1e-15,
+            ..Options::paper()
+        },
+        ..Default::default()
+    };
+    let r = match kind {
+        ModelKind::Shc => impact(&Shc::new(p), &opts).map(|r| r.e),
+        ModelKind::Maxwell => impact(&Maxwell::new(p), &opts).map(|r| r.e),
+    };
+    r.map_err(|e| format!("{e}"))
+}
+
+fn bound(x: f64) -> Value {
+    json!({ "dec": format!("{x:e}"), "bits": format!("{:#018x}", x.to_bits()) })
+}
+
+fn interval_json(i: Interval) -> Value {
+    json!({ "lo": bound(i.inf()), "hi": bound(i.sup()) })
+}
+
+/// Relative margin by which stored claims are wider than the proved enclosures, so that a
+/// re-proof by another build (last-ulp differences) still lies inside them.
+pub const MARGIN: f64 = 1e-14;
+
+/// The interval widened outward by [`MARGIN`] (relative): still proved, since it contains a
+/// proved enclosure.
+pub fn widen(x: Interval) -> Interval {
+    let lo = (x.inf() - MARGIN * x.inf().abs()).next_down();
+    let hi = (x.sup() + MARGIN * x.sup().abs()).next_up();
+    Interval::try_from((lo, hi)).unwrap()
+}
+
+/// One certificate entry: the claim is the proved enclosure widened by [`MARGIN`].
+pub fn entry(name: &str, kind: ModelKind, base: &str, v0: &str) -> Result<Value, String> {
+    let (ts, e) = enclose(kind, base, v0)?;
+    let (ts, e) = (widen(ts), widen(e));
+    Ok(json!({
+        "set": name,
+        "model": kind.name(),
+        "base": base,
+        "v0": v0,
+        "T_s": interval_json(ts),
+        "e": interval_json(e),
+        "e_width": format!("{:e}", e.wid()),
+    }))
+}
+
+/// The whole certificate (28 entries).
+pub fn certificate() -> Result<Value, String> {
+    let mut entries = Vec::new();
+    for (name, kind, base) in SETS {
+        for v0 in SPEEDS {
+            entries.push(entry(name, kind, base, v0)?);
+        }
+    }
+    Ok(json!({
+        "what": "proved enclosures of the separation time T_s and the CoR e for the Table 1 base sets at v0 (nd_from_base with interval parameters enclosing the decimals, rigorous_impact with TaylorOptions::default())",
+        "generator": "cargo run --release --bin proof-certificate -- write",
+        "entries": entries,
+    }))
+}
+
+fn read_bound(v: &Value) -> Result<f64, String> {
+    let s = v["bits"].as_str().ok_or("missing bits")?;
+    let bits = u64::from_str_radix(s.trim_start_matches("0x"), 16).map_err(|e| e.to_string())?;
+    let x = f64::from_bits(bits);
+    // the decimal must be the same double
+    let d: f64 = v["dec"]
+        .as_str()
+        .ok_or("missing dec")?
+        .parse()
+        .map_err(|_| "bad dec")?;
+    if d.to_bits() != bits {
+        return Err(format!("dec {d:e} and bits {s} disagree"));
+    }
+    Ok(x)
+}
+
+fn read_interval(v: &Value) -> Result<Interval, String> {
+    let (a, b) = (read_bound(&v["lo"])?, read_bound(&v["hi"])?);
+    Interval::try_from((a, b)).map_err(|_| format!("[{a}, {b}] is not an interval"))
+}
+
+/// Checks one stored entry: re-proves the enclosures (the stored claims must contain them) and
+/// the DOP853 e at rtol 1e-13 (within the stored e ± 1e-11). Returns a one-line report.
+pub fn check_entry(v: &Value) -> Result<String, String> {
+    let name = v["set"].as_str().ok_or("missing set")?;
+    let kind = match v["model"].as_str() {
+        Some("shc") => ModelKind::Shc,
+        Some("maxwell") => ModelKind::Maxwell,
+        m => return Err(format!("unknown model {m:?}")),
+    };
+    let base = v["base"].as_str().ok_or("missing base")?;
+    let v0 = v["v0"].as_str().ok_or("missing v0")?;
+    let (sts, se) = (read_interval(&v["T_s"])?, read_interval(&v["e"])?);
+    let (ts, e) = enclose(kind, base, v0)?;
+    // the check re-proves each claim: the recomputed enclosure must lie inside the stored one
+    // (which is why `write` stores the enclosures widened by MARGIN)
+    let relation = |s: Interval, r: Interval| {
+        if s.inf() <= r.inf() && r.sup() <= s.sup() {
+            Ok("re-proved: contains the recomputed enclosure")
+        } else {
+            Err(())
+        }
+    };
+    let (Ok(rts), Ok(re)) = (relation(sts, ts), relation(se, e)) else {
+        return Err(format!(
+            "{name} v0={v0}: stored T_s [{:e}, {:e}] / e [{:e}, {:e}] not re-proved: the recomputed enclosure is not inside it, T_s [{:e}, {:e}] / e [{:e}, {:e}]",
+            sts.inf(),
+            sts.sup(),
+            se.inf(),
+            se.sup(),
+            ts.inf(),
+            ts.sup(),
+            e.inf(),
+            e.sup()
+        ));
+    };
+    let ef = float_e(kind, base, v0)?;
+    if !(se.inf() - 1e-11 <= ef && ef <= se.sup() + 1e-11) {
+        return Err(format!("{name} v0={v0}: DOP853 e = {ef} ∉ {se:?} ± 1e-11"));
+    }
+    Ok(format!(
+        "{name} v0={v0}: T_s ∈ [{:e}, {:e}] ({rts}), e ∈ [{:e}, {:e}] (width {:.1e}, {re}); DOP853(1e-13) e = {ef:e} (distance to the enclosure {:.1e})",
+        sts.inf(),
+        sts.sup(),
+        se.inf(),
+        se.sup(),
+        se.wid(),
+        (se.inf() - ef).max(ef - se.sup()).max(0.0)
+    ))
+}

@@ -1,0 +1,73 @@
+//! `paper-repro --quick` regenerates the CSVs, the plots and REPORT.md into a scratch directory.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+#[test]
+fn regenerates_csvs_plots_and_report() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("paper-repro-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let report = dir.join("REPORT.md");
+    let o = Command::new(env!("CARGO_BIN_EXE_paper-repro"))
+        .args(["--quick", "--out"])
+        .arg(&dir)
+        .arg("--report")
+        .arg(&report)
+        .output()
+        .expect("paper-repro runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "cor_float.csv",
+        "fig3_NDBWSHCCM.svg",
+        "fig3_NDBWSHCCM.png",
+        "fig3_NDBWMCM.svg",
+        "fig3_NDBWMCM.png",
+        "fig4_loop_2_15.csv",
+        "fig4_loop_5_02.csv",
+        "table2_loops.csv",
+        "fig4_RCross.svg",
+        "fig4_RCross.png",
+        "fit_curve.csv",
+        "fit_starts.csv",
+        "fit_demo.svg",
+        "fit_demo.png",
+    ] {
+        let p = dir.join(f);
+        let len = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+        assert!(len > 100, "{} missing or empty", p.display());
+    }
+    let png = std::fs::read(dir.join("fig4_RCross.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let svg = std::fs::read_to_string(dir.join("fig3_NDBWSHCCM.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("v0 (m/s)"));
+    // the CoR grid: 12 speeds × 4 sets, every e in the paper's window [0.5, 1]
+    let cor = std::fs::read_to_string(dir.join("cor_float.csv")).unwrap();
+    let rows: Vec<&str> = cor.lines().skip(1).collect();
+    assert_eq!(rows.len(), 12);
+    for r in rows {
+        for x in r.split(',').skip(1) {
+            let e: f64 = x.parse().unwrap();
+            assert!((0.5..=1.0).contains(&e), "{r}");
+        }
+    }
+    // four loops with five positive numbers each
+    let t2 = std::fs::read_to_string(dir.join("table2_loops.csv")).unwrap();
+    assert_eq!(t2.lines().count(), 5);
+    for r in t2.lines().skip(1) {
+        assert!(r.split(',').all(|x| x.parse::<f64>().unwrap() > 0.0), "{r}");
+    }
+    let rep = std::fs::read_to_string(&report).unwrap();
+    for s in [
+        "Fig. 3",
+        "Table 1",
+        "Fig. 4",
+        "Table 2",
+        "peak force",
+        "cannot be reproduced",
+        "not computable",
+        "Noise level",
+    ] {
+        assert!(rep.contains(s), "REPORT.md lacks '{s}'");
+    }
+}
