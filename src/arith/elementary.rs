@@ -48,6 +48,19 @@ pub fn powi_nonneg(x: Interval, mut n: u32) -> Interval {
     acc
 }
 
+/// [1/(2i+1)] for the ln series, [1/i!] for the exp series, and the exp tail bound's n!.
+fn tables() -> &'static ([Interval; LN_TERMS], [Interval; EXP_TERMS]) {
+    static T: OnceLock<([Interval; LN_TERMS], [Interval; EXP_TERMS])> = OnceLock::new();
+    T.get_or_init(|| {
+        let odd = std::array::from_fn(|i| ONE / pt((2 * i + 1) as f64));
+        let mut inv_fact = [ONE; EXP_TERMS];
+        for i in 1..EXP_TERMS {
+            inv_fact[i] = inv_fact[i - 1] / pt(i as f64);
+        }
+        (odd, inv_fact)
+    })
+}
+
 fn pt(x: f64) -> Interval {
     Interval::try_from((x, x)).unwrap()
 }
@@ -80,9 +93,10 @@ fn ln_point(x: f64) -> Interval {
     let s = (mm - ONE) / (mm + ONE);
     let s2 = s * s;
     // Σ_{i<n} s^(2i)/(2i+1) by Horner, constants 1/(2i+1) enclosed
-    let mut acc = ONE / pt((2 * LN_TERMS - 1) as f64);
+    let odd = &tables().0;
+    let mut acc = odd[LN_TERMS - 1];
     for i in (0..LN_TERMS - 1).rev() {
-        acc = acc * s2 + ONE / pt((2 * i + 1) as f64);
+        acc = acc * s2 + odd[i];
     }
     // tail Σ_{i≥n} s^(2i)/(2i+1) ∈ [0, s^(2n)/((2n+1)(1−s²))]
     let s2max = pt(s2.sup());
@@ -105,17 +119,17 @@ fn exp_point(y: f64) -> Interval {
     let k = (y / std::f64::consts::LN_2).round();
     // y − k·LN2_HI is exact (Sterbenz, k·LN2_HI exact); then the small part
     let r = (pt(y) - pt(k * LN2_HI)) - pt(k) * ln2_lo();
-    // Σ_{i<n} r^i/i! by Horner: 1 + r(1 + r/2(1 + r/3(…)))
-    let mut acc = ONE;
-    for i in (1..EXP_TERMS).rev() {
-        acc = ONE + r * acc / pt(i as f64);
+    // Σ_{i<n} r^i/i! by Horner with the enclosed constants 1/i!
+    let inv_fact = &tables().1;
+    let mut acc = inv_fact[EXP_TERMS - 1];
+    for i in (0..EXP_TERMS - 1).rev() {
+        acc = acc * r + inv_fact[i];
     }
+    // tail ≤ 1.5 |r|^n/n!, with 1/n! = (1/(n−1)!)/n
     let rmax = pt(r.mag());
-    let mut fact = ONE;
-    for i in 2..=EXP_TERMS {
-        fact = fact * pt(i as f64);
-    }
-    let tail = (pt(1.5) * powi_nonneg(rmax, EXP_TERMS as u32) / fact).sup();
+    let tail = (pt(1.5) * powi_nonneg(rmax, EXP_TERMS as u32) * inv_fact[EXP_TERMS - 1]
+        / pt(EXP_TERMS as f64))
+    .sup();
     let v = acc + sym(tail);
     // multiply by 2^k exactly (split to stay in range)
     let k = k as i32;
@@ -128,7 +142,15 @@ pub fn ln(x: Interval) -> Interval {
     if x.is_empty() || !(x.inf() > 0.0) || !x.sup().is_finite() {
         return Interval::ENTIRE;
     }
-    Interval::try_from((ln_point(x.inf()).inf(), ln_point(x.sup()).sup())).unwrap()
+    let lo = ln_point(x.inf());
+    // a thin X: ln(x.sup) = ln(x.inf) + ln(1 + u) ≤ ln(x.inf) + u, u = (x.sup − x.inf)/x.inf
+    let u = (pt(x.sup()) - pt(x.inf())) / pt(x.inf());
+    let hi = if u.sup() < 1e-3 {
+        (lo + u).sup()
+    } else {
+        ln_point(x.sup()).sup()
+    };
+    Interval::try_from((lo.inf(), hi)).unwrap()
 }
 
 /// An enclosure of e^Y.
@@ -139,7 +161,15 @@ pub fn exp(y: Interval) -> Interval {
     if !y.inf().is_finite() || !y.sup().is_finite() {
         return Interval::try_from((0.0, f64::INFINITY)).unwrap();
     }
-    Interval::try_from((exp_point(y.inf()).inf().max(0.0), exp_point(y.sup()).sup())).unwrap()
+    let lo = exp_point(y.inf());
+    // a thin Y: e^(y.sup) = e^(y.inf)·e^d ≤ e^(y.inf)/(1 − d), d = y.sup − y.inf < 1
+    let d = pt(y.sup()) - pt(y.inf());
+    let hi = if d.sup() < 1e-3 {
+        (lo / (ONE - d)).sup()
+    } else {
+        exp_point(y.sup()).sup()
+    };
+    Interval::try_from((lo.inf().max(0.0), hi)).unwrap()
 }
 
 /// An enclosure of x^q over X ⊆ [0, ∞), Q ⊆ (0, ∞); `None` where this fast path does not

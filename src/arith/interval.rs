@@ -101,6 +101,13 @@ impl Real for Interval {
                 _ => {}
             }
         }
+        // one sign: ±|x|^q
+        if self.inf() >= 0.0 {
+            return power(*self, *q);
+        }
+        if self.sup() <= 0.0 {
+            return -power(-*self, *q);
+        }
         // |x|^(q−1)x is increasing in x for q ≥ 1: evaluate at the ends.
         let (a, b) = (self.inf(), self.sup());
         if !a.is_finite() || !b.is_finite() {
