@@ -252,7 +252,7 @@ impl Poly {
         let mut out: Vec<Term> = Vec::new();
         for t in ts.drain(..) {
             if let Some(o) = out.iter_mut().find(|o| o.same_monomial(&t)) {
-                o.coef = o.coef + t.coef;
+                o.coef += t.coef;
             } else {
                 out.push(t);
             }

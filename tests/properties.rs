@@ -199,9 +199,9 @@ fn ad_rate<M: CollisionModel<f64, N>, const N: usize>(m: &M, x: &[f64; N]) -> (f
     let f = m.field(x);
     let mut s = 0.0;
     let mut scale = 0.0;
-    for i in 0..N {
-        s += v.d[i] * f[i];
-        scale += (v.d[i] * f[i]).abs();
+    for (d, fi) in v.d.iter().zip(&f) {
+        s += d * fi;
+        scale += (d * fi).abs();
     }
     (s, scale)
 }
@@ -678,13 +678,13 @@ fn search_positive_rate<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> (us
             kk /= grid.len();
             g
         });
-        if m.lyapunov_rate(&x) > 0.0 {
-            if let Err(e) = check_rate(m, &x) {
-                if found == 0 {
-                    first = e;
-                }
-                found += 1;
+        if m.lyapunov_rate(&x) > 0.0
+            && let Err(e) = check_rate(m, &x)
+        {
+            if found == 0 {
+                first = e;
             }
+            found += 1;
         }
     }
     (found, first)

@@ -40,7 +40,7 @@ pub fn powi_nonneg(x: Interval, mut n: u32) -> Interval {
     let (mut base, mut acc) = (x, ONE);
     while n > 0 {
         if n & 1 == 1 {
-            acc = acc * base;
+            acc *= base;
         }
         base = base * base;
         n >>= 1;
@@ -139,7 +139,7 @@ fn exp_point(y: f64) -> Interval {
 
 /// An enclosure of ln X for X ⊆ (0, ∞) (ENTIRE if X reaches 0 or below, or is unbounded).
 pub fn ln(x: Interval) -> Interval {
-    if x.is_empty() || !(x.inf() > 0.0) || !x.sup().is_finite() {
+    if x.is_empty() || x.inf() <= 0.0 || !x.sup().is_finite() {
         return Interval::ENTIRE;
     }
     let lo = ln_point(x.inf());
@@ -178,7 +178,7 @@ pub fn pow(x: Interval, q: Interval) -> Option<Interval> {
     if x.is_empty()
         || q.is_empty()
         || x.inf() < 0.0
-        || !(q.inf() > 0.0)
+        || q.inf() <= 0.0
         || !x.sup().is_finite()
         || !q.sup().is_finite()
     {

@@ -117,15 +117,14 @@ impl<const N: usize> Ctx<'_, N> {
             let _ = &s;
             match self.newton(t, j, sgn) {
                 Some(Some(ts)) => return self.found(ts),
-                Some(None) => {
-                    // monotone g without a zero in T: g keeps the sign it has at T's end
-                    if !self.holds_at(t.sup()) {
-                        let (_, fe, ve) = self.fv(point(t.sup()));
-                        if fe.inf() > 0.0 || ve.sup() < 0.0 {
-                            return Verdict::Cleared;
-                        }
+                // monotone g without a zero in T: g keeps the sign it has at T's end
+                Some(None) if !self.holds_at(t.sup()) => {
+                    let (_, fe, ve) = self.fv(point(t.sup()));
+                    if fe.inf() > 0.0 || ve.sup() < 0.0 {
+                        return Verdict::Cleared;
                     }
                 }
+                Some(None) => {}
                 None => {}
             }
         }

@@ -75,7 +75,7 @@ impl<const N: usize> Piece<N> {
                     for c in coefs.iter().rev().skip(1) {
                         p = p * s + c[i];
                     }
-                    acc = acc + p;
+                    acc += p;
                     acc
                 })
             }

@@ -211,16 +211,16 @@ pub fn taylor_step<const N: usize>(
                 for d in &dk {
                     for i in 0..N {
                         for j in 0..N {
-                            jac[i][j] = jac[i][j] + p * d[i][j];
+                            jac[i][j] += p * d[i][j];
                         }
                     }
-                    p = p * tau1;
+                    p *= tau1;
                 }
                 let base = taylor_eval(&cm, &rem, tau1);
                 let x1: [Interval; N] = std::array::from_fn(|i| {
                     let mut acc = base[i];
                     for j in 0..N {
-                        acc = acc + jac[i][j] * dx[j];
+                        acc += jac[i][j] * dx[j];
                     }
                     acc.intersection(ynew[i])
                 });
@@ -232,7 +232,7 @@ pub fn taylor_step<const N: usize>(
                         Some(d) => std::array::from_fn(|i| {
                             let mut acc = c[i];
                             for j in 0..N {
-                                acc = acc + d[i][j] * dx[j];
+                                acc += d[i][j] * dx[j];
                             }
                             acc
                         }),
@@ -297,7 +297,8 @@ pub fn cut_at_kinks<const N: usize>(
         if s * d.inf() > 0.0 {
             continue; // moving away from 0 all along: s·x_i stays ≥ s·x_i(t0) > 0
         }
-        if !(s * d.sup() < 0.0) {
+        // neither away (above) nor provably towards 0: unresolved (NaN included)
+        if s * d.sup() >= 0.0 || d.sup().is_nan() {
             return KinkCut::Unresolved;
         }
         // towards 0: is the end still on the side?
