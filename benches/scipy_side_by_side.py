@@ -16,7 +16,12 @@ default RAYON_NUM_THREADS=1 (single-threaded, like SciPy); pass --threads N to c
 The binary is $BWCL_BIN, else target/release/bwcl at the repo root (built with
 `cargo build --release` if missing).
 
+The ratio column is t_scipy / t_bwcl per case (t_bwcl as above, i.e. with process start-up);
+`cargo run --release --example results` (benches/results.rs) runs this script with --json and
+adds the in-process bwcl time and the like-for-like ratio next to it.
+
 Usage: python3 benches/scipy_side_by_side.py [--repeat 200] [--threads 1] [--no-bwcl]
+       [--json OUT.json]
 """
 
 import argparse
@@ -195,6 +200,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=200, help="copies of v0 per bwcl call")
     ap.add_argument("--threads", type=int, default=1, help="RAYON_NUM_THREADS for bwcl")
     ap.add_argument("--no-bwcl", action="store_true", help="SciPy side only")
+    ap.add_argument("--json", metavar="PATH", help="also write the rows as JSON to PATH")
     args = ap.parse_args()
 
     try:
@@ -218,6 +224,7 @@ def main():
     print(head)
     print("-" * len(head))
     notes = []
+    rows = []
     for name, model, base in CASES:
         for v0 in SPEEDS:
             ts, e_s, nfev_s, t_s, err_s = scipy_cor(model, base, v0, solve_ivp)
@@ -237,6 +244,17 @@ def main():
                   f"{fmt(t_b * 1e6 if t_b else None, '.1f', ' us'):>12} "
                   f"{fmt(ratio, '.0f'):>8}")
             sys.stdout.flush()
+            rows.append({"case": name, "v0": v0,
+                         "ts_scipy": ts if ts is None or math.isfinite(ts) else None, "e_scipy": e_s,
+                         "nfev_scipy": nfev_s, "t_scipy": t_s, "e_bwcl": e_b,
+                         "nfev_bwcl": nfev_b, "t_bwcl": t_b, "ratio": ratio})
+    ratios = sorted(r["ratio"] for r in rows if r["ratio"])
+    if ratios:
+        print(f"ratio t_scipy/t_bwcl (CLI): min {ratios[0]:.0f}, "
+              f"median {statistics.median(ratios):.0f}, max {ratios[-1]:.0f}")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, default=lambda x: None if x is None else str(x))
     for n in notes:
         print("note:", n)
     return 0

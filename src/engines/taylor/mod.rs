@@ -60,7 +60,7 @@ impl Default for TaylorOptions {
             order: 20,
             tol: 1e-15,
             horizon: 100.0,
-            max_width: 1e-3,
+            max_width: 0.1,
             max_steps: 20_000,
             min_taylor_step: 1e-8,
             low_order_step: 1e-7,
