@@ -11,6 +11,7 @@
 
 pub mod event;
 pub mod flow;
+pub mod lohner;
 pub mod step;
 pub mod tape;
 
@@ -52,6 +53,9 @@ pub struct TaylorOptions {
     /// separation instead of an enclosure; at least 100× the enclosure's width (a wide
     /// enclosure, e.g. for a range of v0, spreads T_s over a correspondingly long time).
     pub event_slack: f64,
+    /// Lohner's QR method: carry the enclosure as a parallelepiped c + A·r between Taylor steps
+    /// (see [`lohner`]); off: a box re-wrapped at every step (the mean-value form alone).
+    pub qr: bool,
 }
 
 impl Default for TaylorOptions {
@@ -66,6 +70,7 @@ impl Default for TaylorOptions {
             low_order_step: 1e-7,
             cross_tol: 1e-16,
             event_slack: 1e-3,
+            qr: true,
         }
     }
 }
@@ -124,6 +129,8 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
     let mut ws = step::Workspaces::default();
     let mut ev_ws = Workspace::default();
     let mut x = model.initial_state();
+    // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
+    let mut rep: Option<lohner::Parallelepiped<N>> = None;
     let mut t = 0.0_f64;
     let mut flow = Flow::default();
     let mut h_low = opts.low_order_step;
@@ -184,6 +191,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
                 hm,
                 opts.min_taylor_step,
                 &side,
+                if opts.qr { rep.as_ref() } else { None },
             ) {
                 Err(_) => break None,
                 Ok(mut o) => match step::cut_at_kinks(&tape, &o, &side) {
@@ -191,6 +199,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
                     step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
                         o.piece.truncate(tc);
                         o.x1 = o.piece.enclose(flow::point(tc));
+                        o.rep = None;
                         break Some(o);
                     }
                     // the crossing is right ahead: a low-order step takes it
@@ -275,6 +284,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         }
         t = t1;
         x = out.x1;
+        rep = out.rep;
     }
     Err(RigorError {
         reason: format!("more than {} steps", opts.max_steps),

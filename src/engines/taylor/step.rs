@@ -22,6 +22,7 @@
 //! switching surface because f is only evaluated, never expanded.
 
 use super::flow::{Piece, point};
+use super::lohner::Parallelepiped;
 use super::tape::{Tape, Workspace};
 use crate::arith::dual::Dual;
 use inari::{Interval, const_interval};
@@ -69,6 +70,8 @@ pub struct StepOut<const N: usize> {
     pub piece: Piece<N>,
     pub x1: [Interval; N],
     pub apriori: [Interval; N],
+    /// The set at the step's end as a parallelepiped (Taylor steps with QR), if any.
+    pub rep: Option<Parallelepiped<N>>,
 }
 
 /// Why a Taylor step was not taken.
@@ -124,10 +127,16 @@ pub fn taylor_step<const N: usize>(
     h_max: f64,
     h_min: f64,
     side: &[i8; N],
+    rep: Option<&Parallelepiped<N>>,
 ) -> Result<StepOut<N>, TaylorFail> {
     let k = order;
-    let xm: [Interval; N] = std::array::from_fn(|i| point(x[i].mid()));
-    let dx: [Interval; N] = std::array::from_fn(|i| x[i] - xm[i]);
+    // the set at t0 as c + A·r (Lohner); a plain box is c = mid X, A = I. The jets over the box
+    // run over the hull of X and c (the mean-value segments from c must lie in it).
+    let boxed = Parallelepiped::from_box(x);
+    let rep = rep.unwrap_or(&boxed);
+    let xm: [Interval; N] = std::array::from_fn(|i| point(rep.c[i]));
+    let x = &std::array::from_fn(|i| x[i].convex_hull(xm[i]));
+    let ar = rep.offsets();
     let kd = jacobian_orders(k);
     // the midpoint's coefficients are only needed where the mean-value form is used (k < kd)
     let jm = tapes
@@ -217,12 +226,27 @@ pub fn taylor_step<const N: usize>(
                     p *= tau1;
                 }
                 let base = taylor_eval(&cm, &rem, tau1);
+                // B = J·A; x(t1) ∈ base + B·r, kept as a parallelepiped (QR) and as a box
+                let b: [[Interval; N]; N] = std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        let mut acc = Interval::try_from((0.0, 0.0)).unwrap();
+                        for l in 0..N {
+                            acc += jac[i][l] * point(rep.a[l][j]);
+                        }
+                        acc
+                    })
+                });
+                let next = Parallelepiped::advance(&base, &b, &rep.r);
                 let x1: [Interval; N] = std::array::from_fn(|i| {
                     let mut acc = base[i];
                     for j in 0..N {
-                        acc += jac[i][j] * dx[j];
+                        acc += b[i][j] * rep.r[j];
                     }
-                    acc.intersection(ynew[i])
+                    let acc = acc.intersection(ynew[i]);
+                    match &next {
+                        Some(p) => acc.intersection(p.hull()[i]),
+                        None => acc,
+                    }
                 });
                 // dense output: x_k(x̂) + D_k (X − x̂) per order k < kd, x_k(X) above
                 let coefs: Vec<[Interval; N]> = cm
@@ -232,7 +256,7 @@ pub fn taylor_step<const N: usize>(
                         Some(d) => std::array::from_fn(|i| {
                             let mut acc = c[i];
                             for j in 0..N {
-                                acc += d[i][j] * dx[j];
+                                acc += d[i][j] * ar[j];
                             }
                             acc
                         }),
@@ -248,6 +272,7 @@ pub fn taylor_step<const N: usize>(
                     },
                     x1,
                     apriori: ynew,
+                    rep: next,
                 });
             }
             y = inflate(&hull(&y, &ynew), 0.5, 1e-300);
@@ -370,6 +395,7 @@ pub fn low_order_step<const N: usize>(
             let tau1 = super::flow::tau(point(t1), t0);
             let x1 = std::array::from_fn(|i| x[i] + tau1 * slope[i]);
             return Some(StepOut {
+                rep: None,
                 piece: Piece::LowOrder {
                     t0,
                     t1,
