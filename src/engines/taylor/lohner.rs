@@ -112,7 +112,7 @@ fn orthonormal_basis<const N: usize>(
             }
         }
         let n = norm(&v);
-        if !(n > 1e-12 * norm(&col(j)).max(f64::MIN_POSITIVE)) {
+        if n.is_nan() || n <= 1e-12 * norm(&col(j)).max(f64::MIN_POSITIVE) {
             return None;
         }
         qs.push(v.map(|x| x / n));
@@ -121,6 +121,7 @@ fn orthonormal_basis<const N: usize>(
 }
 
 /// A rigorous enclosure of Q⁻¹ for a point matrix Q close to orthogonal (module doc).
+#[allow(clippy::needless_range_loop)] // matrix products read clearer indexed
 pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval; N]; N]> {
     let r: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| q[j][i]));
     let mut e_norm = ZERO;
@@ -140,7 +141,7 @@ pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval
         e_norm = pt(e_norm.sup().max(row.sup()));
         r_norm = pt(r_norm.sup().max(rrow.sup()));
     }
-    if !(e_norm.sup() < 0.5) {
+    if e_norm.sup().is_nan() || e_norm.sup() >= 0.5 {
         return None;
     }
     let delta = (e_norm / (ONE - e_norm) * r_norm).sup();
@@ -151,6 +152,7 @@ pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

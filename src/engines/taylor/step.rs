@@ -116,7 +116,7 @@ pub struct Workspaces<const N: usize> {
 /// duals, the costly part of a step, runs to order kd − 1); for kd ≤ k < K the coefficient
 /// enclosure x_k(X) over the whole box is used (x_k(x0) ∈ x_k(X) for every x0 ∈ X), whose
 /// extra width is damped by τ^k.
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)] // matrix products read clearer indexed
 pub fn taylor_step<const N: usize>(
     tapes: &Tapes<N>,
     ws: &mut Workspaces<N>,
