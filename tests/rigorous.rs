@@ -210,3 +210,30 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_wide_range_of_speeds_is_proved_by_sub_ranges() {
+    use bwcl::observables::rigorous::rigorous_impact_over_speeds;
+    let (kind, base) = TABLE1[3];
+    let bi = NdParams::<Interval>::parse(kind, base).unwrap();
+    let r = rigorous_impact_over_speeds(kind, &bi, iv("4.99..5.01"), &TaylorOptions::default(), 8)
+        .unwrap();
+    assert_eq!(r.pieces, 8);
+    let bf = NdParams::<f64>::parse(kind, base).unwrap();
+    for v0 in [4.99, 4.995, 5.0, 5.005, 5.01] {
+        let e = impact(
+            &Maxwell::new(nd_from_base(kind, &bf, &v0).unwrap()),
+            &FloatOptions::default(),
+        )
+        .unwrap()
+        .e;
+        assert!(
+            r.e.inf() - 1e-9 <= e && e <= r.e.sup() + 1e-9,
+            "v0={v0}: {e} ∉ {:?}",
+            r.e
+        );
+    }
+    // the hull is proved for every v0 in the range, so it must contain both ends' values and
+    // cannot be narrower than their spread
+    assert!(r.e.wid() < 0.1, "{:?}", r.e);
+}

@@ -294,6 +294,10 @@ pub struct EngineArgs {
     #[arg(long, value_name = "K", requires = "rigorous",
           default_value_t = TaylorOptions::default().order)]
     pub order: usize,
+    /// With --rigorous and a range of v0 (a..b): how many sub-ranges to prove (the widest or
+    /// unproved one is split first); the result is their hull, valid for every v0 in a..b.
+    #[arg(long, value_name = "N", requires = "rigorous", default_value_t = 32)]
+    pub pieces: usize,
 }
 
 #[derive(Args, Debug)]

@@ -10,7 +10,7 @@ use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
 use super::{CliError, EXIT_FAILED, EXIT_OK};
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
-use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::rigorous::{rigorous_impact, rigorous_impact_over_speeds};
 use bwcl::observables::trajectory::{Units, trajectory};
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -52,7 +52,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let cases = input::cases::<Interval>(&a.params)?;
         let rows: Vec<RigorousRow> = cases
             .par_iter()
-            .map(|c| rigorous_row(kind, c, &opts))
+            .map(|c| rigorous_row(kind, c, &opts, a.engine.pieces))
             .collect();
         let failed = rows.iter().filter(|r| !r.proved).count();
         (output::rigorous_cor(&rows, a.format)?, failed, rows.len())
@@ -136,9 +136,21 @@ fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
 }
 
 /// Enclosures of T_s and e of one case on the rigorous engine.
-fn rigorous_row(kind: ModelKind, c: &Case<Interval>, opts: &TaylorOptions) -> RigorousRow {
-    let res = with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
-        .map(|enc| (enc.ts, enc.e)));
+fn rigorous_row(
+    kind: ModelKind,
+    c: &Case<Interval>,
+    opts: &TaylorOptions,
+    pieces: usize,
+) -> RigorousRow {
+    // a range of v0 (wider than the enclosure of a decimal) is proved by sub-ranges
+    let range = c.v0.filter(|v| v.wid() > 4.0 * f64::EPSILON * v.mag());
+    let res = match (range, &c.base) {
+        (Some(v), Some(base)) => {
+            rigorous_impact_over_speeds(kind, base, v, opts, pieces).map(|enc| (enc.ts, enc.e))
+        }
+        _ => with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
+            .map(|enc| (enc.ts, enc.e))),
+    };
     let mut row = RigorousRow {
         model: kind.name(),
         v0: c.v0.map(bounds),

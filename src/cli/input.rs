@@ -22,6 +22,9 @@ pub struct Case<R> {
     pub v0: Option<R>,
     pub params: NdParams<R>,
     pub scales: Option<Scales<R>>,
+    /// The base set P* (with --base, or of the --physical set): a range of v0 is proved by
+    /// sub-ranges through it.
+    pub base: Option<NdParams<R>>,
 }
 
 /// The validated cases of the parameter options, in the order of --v0.
@@ -33,6 +36,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             v0: None,
             params,
             scales: None,
+            base: None,
         }]);
     }
     // clap guarantees one of --base / --physical, and --v0 with them.
@@ -54,6 +58,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                     v0: Some(v0),
                     params,
                     scales: None,
+                    base: Some(base.clone()),
                 })
             })
             .collect()
@@ -74,6 +79,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                     v0: Some(v0),
                     params,
                     scales: Some(scales),
+                    base: phys.base(kind).ok(),
                 })
             })
             .collect()

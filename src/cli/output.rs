@@ -104,6 +104,20 @@ fn interval_text(b: [f64; 2]) -> String {
     format!("[{}, {}]", bound(b[0]), bound(b[1]))
 }
 
+/// The shortest decimal whose double lies in [l, h], for an interval that is the enclosure
+/// of a decimal the user wrote (a few ulps wide): the table shows "0.1", not its enclosure.
+/// `None` for a real range.
+fn short_decimal_in(l: f64, h: f64) -> Option<String> {
+    if h - l > 4.0 * f64::EPSILON * l.abs().max(h.abs()) || (h - l).is_nan() {
+        return None;
+    }
+    let m = 0.5 * (l + h);
+    (0..17).find_map(|p| {
+        let x: f64 = format!("{m:.p$e}").parse().ok()?;
+        (l <= x && x <= h).then(|| format!("{x}"))
+    })
+}
+
 /// The v0 cell of a table or CSV.
 fn opt_num(x: Option<f64>) -> String {
     x.map(num).unwrap_or_default()
@@ -231,7 +245,8 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                     let v0 = match r.v0 {
                         None => "-".to_string(),
                         Some([l, h]) if l == h => num(l),
-                        Some(b) => format!("[{}, {}]", num(b[0]), num(b[1])),
+                        Some([l, h]) => short_decimal_in(l, h)
+                            .unwrap_or_else(|| format!("[{}, {}]", num(l), num(h))),
                     };
                     let mut c = vec![r.model.to_string(), v0];
                     match (r.ts, r.e) {

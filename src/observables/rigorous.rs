@@ -2,6 +2,8 @@
 
 use crate::engines::taylor::{Flow, RigorError, TaylorOptions, integrate_to_separation};
 use crate::models::CollisionModel;
+use crate::models::scaling::nd_from_base;
+use crate::models::{Maxwell, ModelKind, NdParams, Shc};
 use inari::Interval;
 
 /// A proved result: the true T_s lies in `ts` and the true e = V(T_s) in `e`, for every
@@ -28,6 +30,97 @@ pub fn rigorous_impact<M: CollisionModel<Interval, N>, const N: usize>(
         e: ev.e,
         state: ev.state,
         flow,
+    })
+}
+
+/// Proved T_s and e for every impact speed in a range (all in the hulls).
+#[derive(Clone, Debug)]
+pub struct RangeEnclosure {
+    pub ts: Interval,
+    pub e: Interval,
+    /// How many sub-ranges were proved.
+    pub pieces: usize,
+}
+
+/// A proved (T_s, e) of one sub-range, or why not.
+type Proved = Result<(Interval, Interval), RigorError>;
+
+/// Encloses T_s and e for every v0 in the interval `v0` of base set `base` (𝓟(P*, v0)).
+///
+/// The parameters are constants of the engine (it has no Jacobian with respect to them), so a
+/// wide v0 interval inflates a single enclosure far beyond the true spread of e. The range is
+/// therefore split: starting from the whole range, the sub-range whose e enclosure is widest
+/// (or that could not be proved) is bisected, until `max_pieces` sub-ranges are proved; the
+/// result is the hull over the pieces, valid for every v0 in the range. Fails with the reason
+/// if some sub-range is still not proved when the budget is spent.
+pub fn rigorous_impact_over_speeds(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    v0: Interval,
+    opts: &TaylorOptions,
+    max_pieces: usize,
+) -> Result<RangeEnclosure, RigorError> {
+    let prove = |v: Interval| -> Proved {
+        let p = nd_from_base(kind, base, &v).map_err(|e| RigorError {
+            reason: e.0,
+            t: 0.0,
+            width: 0.0,
+        })?;
+        match kind {
+            ModelKind::Shc => rigorous_impact(&Shc::new(p), opts).map(|r| (r.ts, r.e)),
+            ModelKind::Maxwell => rigorous_impact(&Maxwell::new(p), opts).map(|r| (r.ts, r.e)),
+        }
+    };
+    // (sub-range, result): the piece to split is the unproved or widest one, and among equals
+    // the widest range
+    let key =
+        |(v, r): &(Interval, Proved)| (r.as_ref().map_or(f64::INFINITY, |(_, e)| e.wid()), v.wid());
+    let mut pieces: Vec<(Interval, Proved)> = vec![(v0, prove(v0))];
+    while pieces.len() < max_pieces.max(1) {
+        let worst = (0..pieces.len())
+            .max_by(|&a, &b| {
+                let (ka, kb) = (key(&pieces[a]), key(&pieces[b]));
+                ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+            })
+            .unwrap();
+        let (v, _) = pieces.swap_remove(worst);
+        let m = v.mid();
+        if !(v.inf() < m && m < v.sup()) {
+            // a point: nothing left to split
+            let r = prove(v);
+            pieces.push((v, r));
+            break;
+        }
+        let (a, b) = (
+            Interval::try_from((v.inf(), m)).unwrap(),
+            Interval::try_from((m, v.sup())).unwrap(),
+        );
+        pieces.push((a, prove(a)));
+        pieces.push((b, prove(b)));
+    }
+    let mut hull: Option<(Interval, Interval)> = None;
+    for (v, r) in &pieces {
+        let (ts, e) = r.as_ref().map_err(|err| RigorError {
+            reason: format!(
+                "for v0 in [{}, {}] (of {} sub-ranges): {}",
+                v.inf(),
+                v.sup(),
+                pieces.len(),
+                err.reason
+            ),
+            t: err.t,
+            width: err.width,
+        })?;
+        hull = Some(match hull {
+            None => (*ts, *e),
+            Some((h1, h2)) => (h1.convex_hull(*ts), h2.convex_hull(*e)),
+        });
+    }
+    let (ts, e) = hull.expect("at least one piece");
+    Ok(RangeEnclosure {
+        ts,
+        e,
+        pieces: pieces.len(),
     })
 }
 
