@@ -7,7 +7,7 @@
 //!
 //! | function | reduction | series | tail bound |
 //! |---|---|---|---|
-//! | ln x, x > 0 | x = m·2^e, m ∈ [1/√2, √2), s = (m−1)/(m+1), \|s\| < 0.1716 | ln m = 2 Σ_{i<n} s^(2i+1)/(2i+1) | 2\|s\|·s^(2n)/((2n+1)(1−s²)) |
+//! | ln x, x > 0 | x = m·2^e (from the bits), m ∈ [1/√2, √2), s = (m−1)/(m+1), \|s\| < 0.1716 | ln m = 2 Σ_{i<n} s^(2i+1)/(2i+1) | 2\|s\|·s^(2n)/((2n+1)(1−s²)) |
 //! | exp y | y = k ln 2 + r (ln 2 in two parts, Cody–Waite), k = round(y/ln 2), \|r\| ≤ 0.35 | e^r = Σ_{i<n} r^i/i! | \|r\|^n/n! · e^{\|r\|} ≤ 1.5 \|r\|^n/n! |
 //! | x^q, x ≥ 0, q > 0 | x^q = exp(q · ln x) over the boxes (q·ln x over a box is the exact range of the product) | | relative width ≈ (\|q ln x\| + a few) ulps |
 
@@ -73,18 +73,17 @@ fn sym(b: f64) -> Interval {
 /// An enclosure of ln x for a finite x > 0.
 fn ln_point(x: f64) -> Interval {
     debug_assert!(x > 0.0 && x.is_finite());
-    // x = m·2^e exactly, m ∈ [1/√2, √2)
-    let mut e = x.log2().floor() as i32;
-    let mut m = x / 2f64.powi(e);
-    // log2 may be off by one near powers of two; fix so that m ∈ [1, 2), then recentre
-    while m >= 2.0 {
-        m /= 2.0;
-        e += 1;
-    }
-    while m < 1.0 {
-        m *= 2.0;
-        e -= 1;
-    }
+    // subnormal x: scale by 2^64 first (exact), so that its exponent field is that of a normal
+    let (x, e0) = if x < f64::MIN_POSITIVE {
+        (x * 2f64.powi(64), -64)
+    } else {
+        (x, 0)
+    };
+    // x = m·2^e exactly from the bits: m ∈ [1, 2) (the mantissa with a zero exponent field)
+    let bits = x.to_bits();
+    let mut e = ((bits >> 52) & 0x7ff) as i32 - 1023 + e0;
+    let mut m = f64::from_bits((bits & ((1u64 << 52) - 1)) | (1023u64 << 52));
+    // recentre to m ∈ [1/√2, √2)
     if m > std::f64::consts::SQRT_2 {
         m /= 2.0;
         e += 1;
@@ -250,6 +249,19 @@ mod tests {
             );
         }
         assert!(exp(pt(0.0)).contains(1.0));
+        // subnormal and extreme arguments
+        for x in [5e-324, 1e-310, f64::MIN_POSITIVE, f64::MAX] {
+            assert!(
+                contains_exact(ln(pt(x)), &Float::with_val(PREC, x).ln()),
+                "ln {x}"
+            );
+        }
+        for y in [-745.0, -720.0, 709.0] {
+            assert!(
+                contains_exact(exp(pt(y)), &Float::with_val(PREC, y).exp()),
+                "exp {y}"
+            );
+        }
     }
 
     #[test]
