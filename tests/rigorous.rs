@@ -12,12 +12,16 @@ use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
 use proptest::prelude::*;
 
-const TABLE1: [(ModelKind, &str); 4] = [
-    (ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27"),
-    (ModelKind::Shc, "0.63,-0.611,0.188,0.00594,1,2.02"),
-    (ModelKind::Maxwell, "0.655,-0.64,0.519,0.0118,1.94,2.28"),
-    (ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14"),
-];
+/// The paper's Table 1 sets as (model, base parameters).
+const TABLE1: [(ModelKind, &str); 4] = {
+    let t = bwcl::models::params::TABLE1;
+    [
+        (t[0].1, t[0].2),
+        (t[1].1, t[1].2),
+        (t[2].1, t[2].2),
+        (t[3].1, t[3].2),
+    ]
+};
 
 fn iv(s: &str) -> Interval {
     Interval::parse_decimal(s).unwrap()

@@ -26,28 +26,7 @@ use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
 use rayon::prelude::*;
 
-const CASES: [(&str, ModelKind, &str); 4] = [
-    (
-        "SHC DSS",
-        ModelKind::Shc,
-        "1.43,-1.42,0.632,0.00715,1.31,1.27",
-    ),
-    (
-        "SHC DSA",
-        ModelKind::Shc,
-        "0.63,-0.611,0.188,0.00594,1,2.02",
-    ),
-    (
-        "Maxwell DSS",
-        ModelKind::Maxwell,
-        "0.655,-0.64,0.519,0.0118,1.94,2.28",
-    ),
-    (
-        "Maxwell DSA",
-        ModelKind::Maxwell,
-        "0.44,-0.418,0.113,0.00785,1.27,3.14",
-    ),
-];
+const CASES: [(&str, ModelKind, &str); 4] = bwcl::models::params::TABLE1;
 const SPEEDS: [f64; 3] = [0.1, 1.0, 5.0];
 const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;

@@ -30,6 +30,31 @@ impl ModelKind {
     }
 }
 
+/// The paper's Table 1 (tab:param): the base sets P* identified from the DSS and DSA data, as
+/// (name, model, "B_b,Γ_b,κ,σ_b,n,p" exactly as printed).
+pub const TABLE1: [(&str, ModelKind, &str); 4] = [
+    (
+        "SHC DSS",
+        ModelKind::Shc,
+        "1.43,-1.42,0.632,0.00715,1.31,1.27",
+    ),
+    (
+        "SHC DSA",
+        ModelKind::Shc,
+        "0.63,-0.611,0.188,0.00594,1,2.02",
+    ),
+    (
+        "Maxwell DSS",
+        ModelKind::Maxwell,
+        "0.655,-0.64,0.519,0.0118,1.94,2.28",
+    ),
+    (
+        "Maxwell DSA",
+        ModelKind::Maxwell,
+        "0.44,-0.418,0.113,0.00785,1.27,3.14",
+    ),
+];
+
 /// The set a parameter set is validated against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Admissibility {

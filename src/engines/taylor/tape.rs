@@ -441,18 +441,22 @@ impl<R: Real, const N: usize> Tape<R, N> {
                     Op::Spow(a, q) | Op::Apow(a, q) => {
                         let signed = matches!(op, Op::Spow(..));
                         let qv = &self.consts[q];
-                        if analytic_power(qv, signed) {
-                            // |w|^(q−1)w = w^q (q odd), |w|^q = w^q (q even): repeated products
-                            // are exact as series; use the power recurrence only where w_0 ≠ 0.
-                            let e = qv.as_integer().unwrap();
-                            if e == 0 {
-                                if k == 0 { R::one() } else { R::zero() }
-                            } else if e == 1 {
-                                at(a, k).clone()
-                            } else if e == 2 {
+                        // |w|^(q−1)w = w^q (q odd), |w|^q = w^q (q even) are entire: small
+                        // exponents by products, exact as series; every other power by the
+                        // power recurrence, which needs w_0 ≠ 0
+                        match qv.as_integer().filter(|_| analytic_power(qv, signed)) {
+                            Some(0) => {
+                                if k == 0 {
+                                    R::one()
+                                } else {
+                                    R::zero()
+                                }
+                            }
+                            Some(1) => at(a, k).clone(),
+                            Some(2) => {
                                 mul_k(&c[a * k1..a * k1 + k + 1], &c[a * k1..a * k1 + k + 1], k)
-                            } else {
-                                // w^e by the power recurrence needs w_0 ≠ 0
+                            }
+                            _ => {
                                 if k == 0 {
                                     sign[i] = self.sign_of(a, at(a, 0))?;
                                 }
@@ -469,22 +473,6 @@ impl<R: Real, const N: usize> Tape<R, N> {
                                     signed,
                                 )
                             }
-                        } else {
-                            if k == 0 {
-                                sign[i] = self.sign_of(a, at(a, 0))?;
-                            }
-                            pow_node(
-                                c,
-                                aux,
-                                sign[i],
-                                a,
-                                i,
-                                k,
-                                k1,
-                                qv,
-                                self.factors[q].as_deref(),
-                                signed,
-                            )
                         }
                     }
                 };
