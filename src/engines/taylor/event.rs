@@ -15,6 +15,7 @@
 //! time, not the hull of a step), intersected with [0, ∞) since V(T_s) ≥ 0 holds at T_s.
 
 use super::flow::{Flow, Piece, point};
+use super::newton::{Newton, interval_newton};
 use super::tape::{Tape, Workspace};
 use inari::{Interval, const_interval};
 
@@ -49,12 +50,6 @@ impl<const N: usize> Ctx<'_, N> {
         let o = self.tape.eval(&s);
         (s, o[N], o[N + 1])
     }
-    /// d/dt of output j (N: F, N+1: V) along the flow while in box s, if the jet exists.
-    fn rate(&mut self, s: &[Interval; N], j: usize) -> Option<Interval> {
-        self.tape.jet(s, 1, self.ws).ok()?;
-        Some(self.tape.output_coef(self.ws, 1, j, 1))
-    }
-
     fn found(&self, t: Interval) -> Verdict<N> {
         let (s, _, v) = self.fv(t);
         let e = v.intersection(NONNEG);
@@ -69,35 +64,26 @@ impl<const N: usize> Ctx<'_, N> {
 
     /// Interval Newton for the zero of g = sgn·output_j on T, g′ of sign `-1` on T.
     /// Returns the proved enclosure, `Some(None)` if g has no zero in T, or `None` if undecided.
-    fn newton(&mut self, mut t: Interval, j: usize, sgn: f64) -> Option<Option<Interval>> {
-        let mut proved = false;
-        for _ in 0..40 {
-            let (s, _, _) = self.fv(t);
-            let d = self.rate(&s, j)? * point(sgn);
-            if d.sup() >= 0.0 {
-                return None;
-            }
-            let m = t.mid();
-            let (_, f, v) = self.fv(point(m));
-            let gm = if j == N { f } else { v } * point(sgn);
-            let n = point(m) - gm / d;
-            let tn = t.intersection(n);
-            if tn.is_empty() {
-                return Some(None);
-            }
-            if n.interior(t) {
-                proved = true;
-            }
-            if tn == t {
-                break;
-            }
-            t = tn;
+    fn newton(&mut self, t: Interval, j: usize, sgn: f64) -> Option<Option<Interval>> {
+        let s = point(sgn);
+        // the closures share `self`: g needs only the flow, g′ the jet workspace
+        let (tape, piece) = (self.tape, self.piece);
+        let ws = &mut *self.ws;
+        let g = |m: f64| tape.eval(&piece.enclose(point(m)))[j] * s;
+        let dg = |t: Interval| {
+            tape.jet(&piece.enclose(t), 1, ws).ok()?;
+            let d = tape.output_coef(ws, 1, j, 1) * s;
+            (d.sup() < 0.0).then_some(d)
+        };
+        match interval_newton(t, g, dg) {
+            Newton::Root(ts) => Some(Some(ts)),
+            Newton::NoRoot => Some(None),
+            Newton::Undecided => None,
         }
-        if proved { Some(Some(t)) } else { None }
     }
 
     fn scan(&mut self, t: Interval, depth: u32) -> Verdict<N> {
-        let (s, f, v) = self.fv(t);
+        let (_, f, v) = self.fv(t);
         if f.inf() > 0.0 || v.sup() < 0.0 {
             return Verdict::Cleared;
         }
@@ -114,7 +100,6 @@ impl<const N: usize> Ctx<'_, N> {
                 // the condition holds on all of T and failed just before it: T_s = T.lo
                 return self.found(point(t.inf()));
             }
-            let _ = &s;
             match self.newton(t, j, sgn) {
                 Some(Some(ts)) => return self.found(ts),
                 // monotone g without a zero in T: g keeps the sign it has at T's end

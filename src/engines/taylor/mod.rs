@@ -12,6 +12,7 @@
 pub mod event;
 pub mod flow;
 pub mod lohner;
+pub mod newton;
 pub mod step;
 pub mod tape;
 
