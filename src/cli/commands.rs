@@ -80,7 +80,8 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     }
 }
 
-fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
+/// The six parameters of a set for the JSON output (also used by `fit`).
+pub(super) fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
     ParamsOut {
         b: p.b,
         gamma: p.gamma,

@@ -72,17 +72,6 @@ struct CostOut {
     errors: Vec<String>,
 }
 
-fn params_out(p: &NdParams<f64>) -> ParamsOut<f64> {
-    ParamsOut {
-        b: p.b,
-        gamma: p.gamma,
-        kappa: p.kappa,
-        sigma: p.sigma,
-        n: p.n,
-        p: p.p,
-    }
-}
-
 /// The set as the --base argument.
 fn base_text(p: &NdParams<f64>) -> String {
     p.as_array().map(num).join(",")
@@ -246,7 +235,7 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
     let bytes = match a.format {
         ReportFormat::Json => json(&FitOut {
             model: kind.name(),
-            p_star: params_out(&best.base),
+            p_star: super::commands::params_f64(&best.base),
             base: base_text(&best.base),
             j: curve.j,
             m,
@@ -261,7 +250,7 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
                 .map(|s| StartOut {
                     start: s.start + 1,
                     j: s.j,
-                    p_star: params_out(&s.base),
+                    p_star: super::commands::params_f64(&s.base),
                     iterations: s.iterations,
                     evaluations: s.evaluations,
                     converged: s.converged,
@@ -330,7 +319,7 @@ pub fn cost(a: &CostArgs) -> Result<i32, CliError> {
     let bytes = match a.format {
         ReportFormat::Json => json(&CostOut {
             model: kind.name(),
-            p_star: params_out(&base),
+            p_star: super::commands::params_f64(&base),
             j: curve.j,
             m,
             rms: curve.j / (m as f64).sqrt(),
