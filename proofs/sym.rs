@@ -123,6 +123,7 @@ impl Neg for PSym {
 }
 
 impl Real for PSym {
+    type Dot = bwcl::arith::dot::PlainDot<PSym>;
     fn from_int(k: i64) -> Self {
         Self {
             iv: <Interval as Real>::from_int(k),

@@ -600,73 +600,93 @@ fn dissipative_params(kind: ModelKind) -> impl Strategy<Value = NdParams<f64>> {
         })
 }
 
-/// Horizon of the convergence check (nondimensional time).
+/// First checkpoint of the convergence check (nondimensional time); later checkpoints double it
+/// up to CONV_T_MAX.
 const CONV_T: f64 = 400.0;
-/// "Tends to 0": the distance to 𝓔 at the horizon T is ≤ CONV_EPS·(1 + d0). The distance is
-/// not monotone: points of 𝓔 with B|Z| > 1 are unstable (the hysteretic term ratchets Z for any
-/// oscillation of V), and a solution may approach such a point, leave it and converge to another
-/// point of 𝓔 (seen for B = 4.36, Γ = 0, κ = 0.1, σ = 2.67, n = 1, p = 2 from (1.84, −1.03, 0):
-/// distance 2e-12 at t = 50, 0.2 at t = 250, 9e-8 at t = 400). Near the origin the dissipation
-/// (σ|X|^p V², κ_c|Z|^(p+n)|V|) vanishes with the state, so convergence there is slow (not
-/// exponential): distances of 3e-3 … 1e-2 at T = 400 occur (σ = 0.5, p = 1 and 2), and from
-/// small starts (d0 = 0.2) only a reduction to 0.4·d0; from tiny starts (|x0| ~ 1e-6, p = 2)
-/// the distance even grows (to 7e-5: the sublevel set 𝒮 is elongated, |Y| ≤ ((p+1)𝒱0/κ)^(1/3)).
-/// The check is therefore weak: d(T) ≤ CONV_EPS·(1 + d0), with 𝒱(x(T)) ≤ 𝒱(x0).
+/// Last checkpoint: 2^8·CONV_T.
+const CONV_T_MAX: f64 = 102_400.0;
+/// "Tends to 0": at some checkpoint T ∈ {400, 800, …, CONV_T_MAX} the distance to 𝓔 is
+/// ≤ CONV_EPS·(1 + d0). No rate is claimed by the appendix (LaSalle), and none holds uniformly:
+/// - Points of 𝓔 with (B + |Γ|)|Z|^n > 1 are one-sided saddles: with V of one sign the
+///   hysteretic rate Ż = V·(1 − (B sgn(VZ) + Γ)|Z|^n) turns the linearised stiffness negative.
+///   The exact solution may converge to such a point with V → 0 from the stable side; the f64
+///   solution, whose V carries rounding noise of both signs, then leaves it along the unstable
+///   direction and converges to another point of 𝓔. Seen (CI seed) for B = 2.72, Γ = 0.79,
+///   κ = 0.15, σ = 4.86, n = 1, p = 2 from (1.90, −1.62, 0): distance 1e-10 at t = 100…200,
+///   0.23 at t = 400, 2e-14 from t = 800 on (and B = 4.36, Γ = 0, κ = 0.1, σ = 2.67 from
+///   (1.84, −1.03, 0): 2e-12 at t = 50, 0.2 at t = 250, 9e-8 at t = 400).
+/// - Near the origin the dissipation (σ|X|^p V², κ_c|Z|^(p+n)|V|) vanishes with the state, so
+///   convergence there is algebraic, not exponential (distances of 3e-3 … 1e-2 at t = 400 for
+///   σ = 0.5, p = 1 and 2), and from tiny starts (|x0| ~ 1e-6, p = 2) the distance may grow
+///   first (the sublevel set 𝒮 is elongated, |Y| ≤ ((p+1)𝒱0/κ)^(1/3)).
+///
+/// Hence the doubling horizons, and with them 𝒱(x(T)) ≤ 𝒱(x0) (the limit lies in 𝒮).
 const CONV_EPS: f64 = 1e-1;
 
-/// (max distance to 𝓔 on [3T/4, T], distance at T, 𝒱 at T, 𝒱(x0)).
+/// Integrates to the first checkpoint T (CONV_T, 2·CONV_T, …) at which the distance to 𝓔 is
+/// ≤ CONV_EPS·(1 + d0). Ok((T, 𝒱(x(T)), 𝒱(x0))); Err with the distances at every checkpoint
+/// if none up to CONV_T_MAX qualifies.
 fn convergence<M: CollisionModel<f64, N>, const N: usize>(
     m: &M,
     x0: [f64; N],
-) -> Result<(f64, f64, f64, f64), String> {
-    let mut ds: Vec<(f64, f64)> = Vec::new();
-    let mut vend = 0.0;
-    integrate(m, x0, CONV_T, 1e-10, |t, y| {
-        ds.push((t, m.equilibrium_distance(y)));
-        vend = m.lyapunov(y);
-    })
-    .map_err(|e| format!("{e}"))?;
-    // the maximum over the steps ending in [a, b], and the first step ending after b (a step
-    // may cover the whole window)
-    let window = |a: f64, b: f64| {
-        let first_after = ds.iter().find(|(t, _)| *t >= b).map_or(0.0, |x| x.1);
-        ds.iter()
-            .filter(|(t, _)| *t >= a && *t <= b)
-            .fold(first_after, |m, x| m.max(x.1))
+) -> Result<(f64, f64, f64), String> {
+    let v0 = m.lyapunov(&x0);
+    let bound = CONV_EPS * (1.0 + m.equilibrium_distance(&x0));
+    if m.field(&x0).iter().all(|c| *c == 0.0) {
+        return Ok((0.0, v0, v0)); // an equilibrium: the solution is constant
+    }
+    let opts = Options {
+        rtol: 1e-10,
+        atol: 1e-14,
+        max_steps: 4_000_000,
+        ..Options::default()
     };
-    let _ = window(0.0, 0.0);
-    Ok((
-        window(0.75 * CONV_T, CONV_T),
-        ds.last().map_or(0.0, |x| x.1),
-        vend,
-        m.lyapunov(&x0),
-    ))
+    let mut s = Dop853::new(|_t, y: &[f64; N]| m.field(y), 0.0, x0, CONV_T_MAX, opts)
+        .map_err(|e| format!("{e}"))?;
+    let mut checkpoint = CONV_T;
+    let mut seen = Vec::new();
+    loop {
+        let more = s.step().map_err(|e| format!("{e}"))?;
+        while checkpoint <= s.t() {
+            // the dense output at the checkpoint, not the step's end
+            let y = s.dense_output().eval(checkpoint);
+            let d = m.equilibrium_distance(&y);
+            if d <= bound {
+                return Ok((checkpoint, m.lyapunov(&y), v0));
+            }
+            seen.push(format!("{d:.1e} at {checkpoint}"));
+            checkpoint *= 2.0;
+        }
+        if !more || checkpoint > CONV_T_MAX {
+            return Err(format!(
+                "distance to 𝓔 > {bound:.1e} at every checkpoint: {}",
+                seen.join(", ")
+            ));
+        }
+    }
 }
 
 proptest! {
     #![proptest_config(config())]
 
     /// thm:BWSHCCM_convergence: from an arbitrary state the distance to 𝓔 tends to 0 (≤ 1e-1·(1
-    /// + d0) at T = 400) and the limit lies in the sublevel set 𝒮 of the start (𝒱(x(T)) ≤ 𝒱(x0)).
+    /// + d0) at one of the checkpoints 400·2^k ≤ 102400) and the limit lies in the sublevel set
+    /// 𝒮 of the start (𝒱(x(T)) ≤ 𝒱(x0)).
     #[test]
     fn shc_converges_to_e_within_the_sublevel_set(p in dissipative_params(ModelKind::Shc), x0 in state::<3>(2.0)) {
         let m = shc(p);
-        let d0 = m.equilibrium_distance(&x0);
-        let (last, end, vend, v0) = convergence(&m, x0).map_err(TestCaseError::fail)?;
-        prop_assert!(end <= CONV_EPS * (1.0 + d0),
-            "distance to 𝓔: {d0:e} at 0, ≤ {last:e} on [3T/4, T], {end:e} at T from {x0:?}, P = {:?}", m.params());
-        prop_assert!(vend <= v0 * (1.0 + EUB_TOL) + EUB_ABS * v0.sqrt(), "𝒱(x(T)) = {vend} > 𝒱(x0) = {v0}");
+        let (t, vend, v0) = convergence(&m, x0)
+            .map_err(|e| TestCaseError::fail(format!("{e} from {x0:?}, P = {:?}", m.params())))?;
+        prop_assert!(vend <= v0 * (1.0 + EUB_TOL) + EUB_ABS * v0.sqrt(), "𝒱(x({t})) = {vend} > 𝒱(x0) = {v0}");
     }
 
     /// thm:BWMCM_convergence: as for the SHC model.
     #[test]
     fn maxwell_converges_to_e_within_the_sublevel_set(p in dissipative_params(ModelKind::Maxwell), x0 in state::<4>(2.0)) {
         let m = maxwell(p);
-        let d0 = m.equilibrium_distance(&x0);
-        let (last, end, vend, v0) = convergence(&m, x0).map_err(TestCaseError::fail)?;
-        prop_assert!(end <= CONV_EPS * (1.0 + d0),
-            "distance to 𝓔: {d0:e} at 0, ≤ {last:e} on [3T/4, T], {end:e} at T from {x0:?}, P = {:?}", m.params());
-        prop_assert!(vend <= v0 * (1.0 + EUB_TOL) + EUB_ABS * v0.sqrt(), "𝒱(x(T)) = {vend} > 𝒱(x0) = {v0}");
+        let (t, vend, v0) = convergence(&m, x0)
+            .map_err(|e| TestCaseError::fail(format!("{e} from {x0:?}, P = {:?}", m.params())))?;
+        prop_assert!(vend <= v0 * (1.0 + EUB_TOL) + EUB_ABS * v0.sqrt(), "𝒱(x({t})) = {vend} > 𝒱(x0) = {v0}");
     }
 }
 

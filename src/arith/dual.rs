@@ -10,6 +10,7 @@
 //! | \|a\|^(q−1)a | q\|a\|^(q−1)·a′ |
 //! | \|a\|^q | q\|a\|^(q−1)a·a′ |
 
+use super::dot::Dot;
 use super::real::Real;
 use super::scalar::Scalar;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -116,28 +117,70 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
         self.chain(Real::abs(&self.v), s)
     }
     fn spow(&self, q: &R) -> Self {
-        // d/dx |x|^(q−1)x = q|x|^(q−1)
-        let dq = q.clone() * Real::apow(&self.v, &(q.clone() - R::one()));
-        self.chain(Real::spow(&self.v, q), dq)
+        // d/dx |x|^(q−1)x = q|x|^(q−1) = q·(|x|^(q−1)x)/x for x ≠ 0: no second power
+        let u = Real::spow(&self.v, q);
+        let dq = if self.v.sign().is_some() {
+            q.clone() * u.clone() / self.v.clone()
+        } else {
+            q.clone() * Real::apow(&self.v, &(q.clone() - R::one()))
+        };
+        self.chain(u, dq)
     }
     fn apow(&self, q: &R) -> Self {
-        // d/dx |x|^q = q|x|^(q−2)x = q·spow(x, q − 1) (q > 1), sign(x) (q = 1)
+        // d/dx |x|^q = q|x|^(q−2)x = q·|x|^q/x (x ≠ 0), q·spow(x, q − 1) (q > 1), sign(x) (q = 1)
+        let u = Real::apow(&self.v, q);
         let dq = if q.as_integer() == Some(1) {
             match self.v.sign() {
                 Some(s) => R::from_int(s as i64),
                 None => R::unbounded(),
             }
+        } else if self.v.sign().is_some() {
+            q.clone() * u.clone() / self.v.clone()
         } else {
             q.clone() * Real::spow(&self.v, &(q.clone() - R::one()))
         };
-        self.chain(Real::apow(&self.v, q), dq)
+        self.chain(u, dq)
     }
 }
 
 /// Duals over a field are a field for the tape's recurrences: exponents (the models' n, p) are
 /// constants, so `pow`/`spow`/`apow` differentiate in the base only (a non-constant exponent
 /// gives an unbounded derivative, never a wrong one).
+/// Σ aⱼ·bⱼ over duals, one accumulator per component: (Σ aⱼbⱼ).v = Σ aⱼ.v·bⱼ.v and
+/// (Σ aⱼbⱼ).dᵢ = Σ (aⱼ.v·bⱼ.dᵢ + aⱼ.dᵢ·bⱼ.v).
+pub struct DualDot<R: Real, const M: usize> {
+    v: R::Dot,
+    d: [R::Dot; M],
+}
+
+impl<R: Real, const M: usize> Dot<Dual<R, M>> for DualDot<R, M> {
+    #[inline]
+    fn new() -> Self {
+        Self {
+            v: R::Dot::new(),
+            d: std::array::from_fn(|_| R::Dot::new()),
+        }
+    }
+    #[inline]
+    fn add_prod(&mut self, a: &Dual<R, M>, b: &Dual<R, M>) {
+        self.v.add_prod(&a.v, &b.v);
+        for i in 0..M {
+            self.d[i].add_prod(&a.v, &b.d[i]);
+            self.d[i].add_prod(&a.d[i], &b.v);
+        }
+    }
+    #[inline]
+    fn sum(self) -> Dual<R, M> {
+        let mut it = self.d.into_iter();
+        Dual {
+            v: self.v.sum(),
+            d: std::array::from_fn(|_| it.next().unwrap().sum()),
+        }
+    }
+}
+
 impl<R: Real, const M: usize> Real for Dual<R, M> {
+    type Dot = DualDot<R, M>;
     fn from_int(k: i64) -> Self {
         Self::constant(R::from_int(k))
     }
@@ -161,11 +204,18 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
         }
     }
     #[inline]
+    fn div_int(&self, k: i64) -> Self {
+        Self {
+            v: self.v.div_int(k),
+            d: std::array::from_fn(|i| self.d[i].div_int(k)),
+        }
+    }
+    #[inline]
     fn mul_constant(&self, c: &Self) -> Self {
         if c.d.iter().all(|x| x.lo() == 0.0 && x.hi() == 0.0) {
             Self {
-                v: self.v.clone() * c.v.clone(),
-                d: std::array::from_fn(|i| self.d[i].clone() * c.v.clone()),
+                v: self.v.mul_constant(&c.v),
+                d: std::array::from_fn(|i| self.d[i].mul_constant(&c.v)),
             }
         } else {
             self.clone() * c.clone()

@@ -11,6 +11,7 @@
 //! | exp y | y = k ln 2 + r (ln 2 in two parts, Cody–Waite), k = round(y/ln 2), \|r\| ≤ 0.35 | e^r = Σ_{i<n} r^i/i! | \|r\|^n/n! · e^{\|r\|} ≤ 1.5 \|r\|^n/n! |
 //! | x^q, x ≥ 0, q > 0 | x^q = exp(q · ln x) over the boxes (q·ln x over a box is the exact range of the product) | | relative width ≈ (\|q ln x\| + a few) ulps |
 
+use super::ulp::Ulp;
 use inari::{Interval, const_interval};
 use std::sync::OnceLock;
 
@@ -35,42 +36,41 @@ const EXP_TERMS: usize = 16;
 
 /// x^n for x ≥ 0 by binary powering in interval arithmetic (inari's `powi` goes through
 /// MPFR; for a nonnegative base each product is monotone, so this is as tight up to rounding).
-pub fn powi_nonneg(x: Interval, mut n: u32) -> Interval {
+pub fn powi_nonneg(x: Interval, n: u32) -> Interval {
     debug_assert!(x.inf() >= 0.0 || x.is_empty());
-    let (mut base, mut acc) = (x, ONE);
-    while n > 0 {
-        if n & 1 == 1 {
-            acc *= base;
-        }
-        base = base * base;
-        n >>= 1;
+    if x.is_empty() {
+        return x;
     }
-    acc
+    Ulp::of(x).powi_nonneg(n).interval()
 }
 
-/// [1/(2i+1)] for the ln series, [1/i!] for the exp series, and the exp tail bound's n!.
-fn tables() -> &'static ([Interval; LN_TERMS], [Interval; EXP_TERMS]) {
-    static T: OnceLock<([Interval; LN_TERMS], [Interval; EXP_TERMS])> = OnceLock::new();
+/// [1/(2i+1)] for the ln series, [1/i!] for the exp series (enclosed once by inari's
+/// divisions, used in the [`Ulp`] arithmetic of the series).
+#[allow(clippy::type_complexity)]
+fn tables() -> &'static ([Ulp; LN_TERMS], [Ulp; EXP_TERMS]) {
+    static T: OnceLock<([Ulp; LN_TERMS], [Ulp; EXP_TERMS])> = OnceLock::new();
     T.get_or_init(|| {
-        let odd = std::array::from_fn(|i| ONE / pt((2 * i + 1) as f64));
+        let odd = std::array::from_fn(|i| Ulp::of(ONE / pt((2 * i + 1) as f64)));
         let mut inv_fact = [ONE; EXP_TERMS];
         for i in 1..EXP_TERMS {
             inv_fact[i] = inv_fact[i - 1] / pt(i as f64);
         }
-        (odd, inv_fact)
+        (odd, inv_fact.map(Ulp::of))
     })
+}
+
+/// ln 2's low part as a [`Ulp`] interval.
+fn ln2_lo_ulp() -> Ulp {
+    static LO: OnceLock<Ulp> = OnceLock::new();
+    *LO.get_or_init(|| Ulp::of(ln2_lo()))
 }
 
 fn pt(x: f64) -> Interval {
     Interval::try_from((x, x)).unwrap()
 }
 
-/// [−b, b] for b ≥ 0.
-fn sym(b: f64) -> Interval {
-    Interval::try_from((-b, b)).unwrap()
-}
-
-/// An enclosure of ln x for a finite x > 0.
+/// An enclosure of ln x for a finite x > 0 (the series in [`Ulp`] arithmetic: no rounding-mode
+/// switches inside the loop).
 fn ln_point(x: f64) -> Interval {
     debug_assert!(x > 0.0 && x.is_finite());
     // subnormal x: scale by 2^64 first (exact), so that its exponent field is that of a normal
@@ -88,8 +88,8 @@ fn ln_point(x: f64) -> Interval {
         m /= 2.0;
         e += 1;
     }
-    let mm = pt(m);
-    let s = (mm - ONE) / (mm + ONE);
+    // m − 1 is exact (Sterbenz); one inari division
+    let s = Ulp::of(pt(m - 1.0) / (pt(m) + ONE));
     let s2 = s * s;
     // Σ_{i<n} s^(2i)/(2i+1) by Horner, constants 1/(2i+1) enclosed
     let odd = &tables().0;
@@ -98,16 +98,17 @@ fn ln_point(x: f64) -> Interval {
         acc = acc * s2 + odd[i];
     }
     // tail Σ_{i≥n} s^(2i)/(2i+1) ∈ [0, s^(2n)/((2n+1)(1−s²))]
-    let s2max = pt(s2.sup());
-    let tail = (powi_nonneg(s2max, LN_TERMS as u32)
+    let s2max = pt(s2.hi);
+    let tail = (Ulp::of(s2max).powi_nonneg(LN_TERMS as u32).interval()
         / (pt((2 * LN_TERMS + 1) as f64) * (ONE - s2max)))
         .sup();
-    let series = acc + Interval::try_from((0.0, tail)).unwrap();
+    let series = acc + Ulp { lo: 0.0, hi: tail };
     // small parts first: e·lo + 2s·Σ, then the exact e·LN2_HI
-    (pt(e as f64) * ln2_lo() + pt(2.0) * s * series) + pt(e as f64 * LN2_HI)
+    let ef = Ulp::point(e as f64);
+    ((ef * ln2_lo_ulp() + Ulp::point(2.0) * s * series) + Ulp::point(e as f64 * LN2_HI)).interval()
 }
 
-/// An enclosure of e^y for a finite y.
+/// An enclosure of e^y for a finite y (the series in [`Ulp`] arithmetic).
 fn exp_point(y: f64) -> Interval {
     if y > 709.8 {
         return Interval::try_from((f64::MAX, f64::INFINITY)).unwrap();
@@ -117,23 +118,30 @@ fn exp_point(y: f64) -> Interval {
     }
     let k = (y / std::f64::consts::LN_2).round();
     // y − k·LN2_HI is exact (Sterbenz, k·LN2_HI exact); then the small part
-    let r = (pt(y) - pt(k * LN2_HI)) - pt(k) * ln2_lo();
+    let r = Ulp::point(y - k * LN2_HI) - Ulp::point(k) * ln2_lo_ulp();
     // Σ_{i<n} r^i/i! by Horner with the enclosed constants 1/i!
     let inv_fact = &tables().1;
     let mut acc = inv_fact[EXP_TERMS - 1];
     for i in (0..EXP_TERMS - 1).rev() {
         acc = acc * r + inv_fact[i];
     }
-    // tail ≤ 1.5 |r|^n/n!, with 1/n! = (1/(n−1)!)/n
-    let rmax = pt(r.mag());
-    let tail = (pt(1.5) * powi_nonneg(rmax, EXP_TERMS as u32) * inv_fact[EXP_TERMS - 1]
-        / pt(EXP_TERMS as f64))
-    .sup();
-    let v = acc + sym(tail);
-    // multiply by 2^k exactly (split to stay in range)
+    // tail ≤ 1.5 |r|^n/n!, with 1/n! = (1/(n−1)!)/n and n = 16 (1/16 exact)
+    const _: () = assert!(EXP_TERMS == 16);
+    let rmax = Ulp::point(r.mag());
+    let tail = (Ulp::point(1.5)
+        * rmax.powi_nonneg(EXP_TERMS as u32)
+        * inv_fact[EXP_TERMS - 1]
+        * Ulp::point(1.0 / 16.0))
+    .hi;
+    let v = acc
+        + Ulp {
+            lo: -tail,
+            hi: tail,
+        };
+    // multiply by 2^k (split to stay in range; outward steps cover underflow)
     let k = k as i32;
     let (k1, k2) = (k / 2, k - k / 2);
-    v * pt(2f64.powi(k1)) * pt(2f64.powi(k2))
+    (v * Ulp::point(2f64.powi(k1)) * Ulp::point(2f64.powi(k2))).interval()
 }
 
 /// An enclosure of ln X for X ⊆ (0, ∞) (ENTIRE if X reaches 0 or below, or is unbounded).

@@ -62,7 +62,68 @@ fn power(x: Interval, q: Interval) -> Interval {
     super::elementary::pow(x, q).unwrap_or_else(|| Interval::pow(x, q))
 }
 
+/// Below 2^−969 a product's or quotient's residual may not be representable: the nearest
+/// result is then bracketed by its neighbours (its error is below one spacing).
+const RESIDUAL_EXACT: f64 = 2.004168360008973e-292; // 2^-969
+
+/// The nearest value p of x·k (`div`: x/k) and which side of it the exact value lies on, from
+/// the exact residual (FMA: x·k − p, or x − p·k for a quotient, both representable above
+/// 2^−969); returns (lower, upper) bounds, or None when not finite.
+#[inline]
+fn int_op_bounds(x: f64, k: f64, div: bool) -> Option<(f64, f64)> {
+    let p = if div { x / k } else { x * k };
+    if !p.is_finite() || !x.is_finite() {
+        return None;
+    }
+    if x == 0.0 {
+        return Some((0.0, 0.0));
+    }
+    if p.abs() < RESIDUAL_EXACT {
+        return Some((p.next_down(), p.next_up()));
+    }
+    // sign of (exact − p): for a product x·k − p; for a quotient (x − p·k)/k
+    let r = if div {
+        (-p).mul_add(k, x) * k.signum()
+    } else {
+        x.mul_add(k, -p)
+    };
+    Some(if r > 0.0 {
+        (p, p.next_up())
+    } else if r < 0.0 {
+        (p.next_down(), p)
+    } else {
+        (p, p)
+    })
+}
+
+/// [a, b]·k or [a, b]/k for an exact integer k ≠ 0 (k = 0 only for a product), rounded
+/// outwards without switching the rounding mode; inari's operation where not finite.
+#[inline]
+fn int_op(x: Interval, k: i64, div: bool) -> Interval {
+    let kf = k as f64;
+    if k == 0 && !div {
+        return if x.is_empty() {
+            x
+        } else {
+            Interval::try_from((0.0, 0.0)).unwrap()
+        };
+    }
+    let (a, b) = if k > 0 {
+        (x.inf(), x.sup())
+    } else {
+        (x.sup(), x.inf())
+    };
+    match (int_op_bounds(a, kf, div), int_op_bounds(b, kf, div)) {
+        (Some((lo, _)), Some((_, hi))) => Interval::try_from((lo, hi)).unwrap(),
+        _ => {
+            let ki = Interval::try_from((kf, kf)).unwrap();
+            if div { x / ki } else { x * ki }
+        }
+    }
+}
+
 impl Real for Interval {
+    type Dot = super::dot::IntervalDot;
     fn from_int(k: i64) -> Self {
         let x = k as f64;
         assert!(x as i64 == k, "integer constant {k} is not exact in f64");
@@ -70,6 +131,22 @@ impl Real for Interval {
     }
     fn from_exact_f64(x: f64) -> Self {
         Interval::try_from((x, x)).unwrap_or(Interval::EMPTY)
+    }
+    #[inline]
+    fn mul_int(&self, k: i64) -> Self {
+        int_op(*self, k, false)
+    }
+    #[inline]
+    fn div_int(&self, k: i64) -> Self {
+        int_op(*self, k, true)
+    }
+    /// The product in [`super::ulp::Ulp`] arithmetic (the same enclosure, no mode switches).
+    #[inline]
+    fn mul_constant(&self, c: &Self) -> Self {
+        if self.is_empty() || c.is_empty() {
+            return Interval::EMPTY;
+        }
+        (super::ulp::Ulp::of(*self) * super::ulp::Ulp::of(*c)).interval()
     }
     fn parse_decimal(s: &str) -> Result<Self, String> {
         enclose_decimal_or_range(s)
@@ -143,6 +220,89 @@ impl Real for Interval {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// x·k and x/k by the residual method enclose the exact rational result, are at most one
+    /// ulp wide per end, and equal inari's where inari is exact.
+    #[test]
+    fn integer_products_and_quotients_enclose_the_exact_value() {
+        use rug::Rational;
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        let mut seed = 0x2545f4914f6cdd1d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let specials = [
+            0.0,
+            1.0,
+            -1.0,
+            0.1,
+            -0.3,
+            1e-300,
+            f64::from_bits(1),
+            5e-324 * 3.0,
+            2.2250738585072014e-308,
+            1.7976931348623157e308,
+            1e308,
+            1.0 / 3.0,
+        ];
+        for i in 0..20000 {
+            let r = next();
+            let x = if i < specials.len() * 8 {
+                specials[i % specials.len()]
+            } else {
+                let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+                let e = (r % 2000) as i32 - 1000;
+                if r & 1 == 0 {
+                    m * 2f64.powi(e)
+                } else {
+                    -m * 2f64.powi(e)
+                }
+            };
+            let k = [1i64, 2, 3, 7, 20, 21, -1, -3, 1 << 40, 12345][(next() % 10) as usize];
+            let iv = Interval::try_from((x, x)).unwrap();
+            let exact_mul = q(x) * Rational::from(k);
+            let m = iv.mul_int(k);
+            if m.sup().is_finite() && m.inf().is_finite() {
+                assert!(
+                    q(m.inf()) <= exact_mul && exact_mul <= q(m.sup()),
+                    "{x:e}·{k}: {m:?}"
+                );
+                let ulps = if m.mag() < RESIDUAL_EXACT { 2 } else { 1 };
+                let mut hi = m.inf();
+                (0..ulps).for_each(|_| hi = hi.next_up());
+                assert!(m.sup() <= hi, "{x:e}·{k}: {m:?}");
+            } else {
+                assert!(
+                    m.contains(x * k as f64)
+                        || m.sup() == f64::INFINITY
+                        || m.inf() == f64::NEG_INFINITY
+                );
+            }
+            let exact_div = q(x) / Rational::from(k);
+            let d = iv.div_int(k);
+            assert!(
+                q(d.inf()) <= exact_div && exact_div <= q(d.sup()),
+                "{x:e}/{k}: {d:?}"
+            );
+            assert!(
+                d.wid() <= 2.0 * (x / k as f64).abs() * f64::EPSILON + 2e-323,
+                "{x:e}/{k}: {d:?}"
+            );
+        }
+        // wide and unbounded operands
+        let w = Interval::try_from((-1.5, 2.5)).unwrap();
+        assert_eq!(w.mul_int(-2), Interval::try_from((-5.0, 3.0)).unwrap());
+        assert_eq!(w.div_int(2), Interval::try_from((-0.75, 1.25)).unwrap());
+        assert_eq!(Interval::ENTIRE.mul_int(3), Interval::ENTIRE);
+        assert_eq!(
+            Interval::ENTIRE.mul_int(0),
+            Interval::try_from((0.0, 0.0)).unwrap()
+        );
+        assert!(Interval::EMPTY.mul_int(3).is_empty() && Interval::EMPTY.div_int(3).is_empty());
+    }
 
     #[test]
     fn decimal_is_enclosed_not_rounded() {

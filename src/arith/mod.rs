@@ -4,14 +4,18 @@
 //! - [`scalar`]: the [`Scalar`] trait the models are written against;
 //! - [`interval`]: inari `Interval` as a `Real`, exact enclosure of decimal input;
 //! - [`series`]: truncated Taylor series over any `Real`;
-//! - [`dual`]: forward-mode dual numbers (gradients, Jacobians).
+//! - [`dual`]: forward-mode dual numbers (gradients, Jacobians);
+//! - [`dot`]: accumulators of sums of products (the recurrences' inner loop);
+//! - [`ulp`]: interval operations by outward ulp steps (no rounding-mode switches).
 
+pub mod dot;
 pub mod dual;
 pub mod elementary;
 pub mod interval;
 pub mod real;
 pub mod scalar;
 pub mod series;
+pub mod ulp;
 
 pub use real::Real;
 pub use scalar::Scalar;

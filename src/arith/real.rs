@@ -26,6 +26,9 @@ pub trait Real:
     + Neg<Output = Self>
     + 'static
 {
+    /// The accumulator of Σ aⱼ·bⱼ (see [`super::dot`]): for intervals, one enclosure of the
+    /// whole sum instead of a rounded operation per term.
+    type Dot: super::dot::Dot<Self>;
     /// A small integer, exactly (|k| ≤ 2^53).
     fn from_int(k: i64) -> Self;
     /// An `f64` that is *exactly* the intended value (a grid point, a value computed in f64 on
@@ -46,6 +49,11 @@ pub trait Real:
     #[inline]
     fn mul_int(&self, k: i64) -> Self {
         self.clone() * Self::from_int(k)
+    }
+    /// x/k for a small non-zero integer k (|k| ≤ 2^53); overridden like [`Real::mul_int`].
+    #[inline]
+    fn div_int(&self, k: i64) -> Self {
+        self.clone() / Self::from_int(k)
     }
     /// x·c for a constant c of the type (for a dual: one with a zero derivative part, such as
     /// a tape constant). Types whose general product is costly override it (a dual:
@@ -119,6 +127,7 @@ fn fast_pow(x: f64, q: f64) -> f64 {
 }
 
 impl Real for f64 {
+    type Dot = super::dot::F64Dot;
     #[inline]
     fn from_int(k: i64) -> Self {
         k as f64

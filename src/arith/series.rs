@@ -20,6 +20,7 @@
 //! integer powers |w|^(q−1)w = w^q and even |w|^q = w^q are analytic everywhere and are
 //! expanded by products.
 
+use super::dot::Dot;
 use super::real::Real;
 use super::scalar::Scalar;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -27,32 +28,44 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// c_k of c = a·b.
 #[inline]
 pub fn mul_k<R: Real>(a: &[R], b: &[R], k: usize) -> R {
-    let mut s = a[0].clone() * b[k].clone();
-    for j in 1..=k {
-        s = s + a[j].clone() * b[k - j].clone();
+    let mut s = R::Dot::new();
+    for j in 0..=k {
+        s.add_prod(&a[j], &b[k - j]);
     }
-    s
+    s.sum()
 }
 
 /// c_k of c = a/b, given c_0..c_{k−1}.
 #[inline]
 pub fn div_k<R: Real>(a: &[R], b: &[R], c: &[R], k: usize) -> R {
-    let mut s = a[k].clone();
+    let mut s = R::Dot::new();
     for j in 1..=k {
-        s = s - b[j].clone() * c[k - j].clone();
+        s.add_prod(&b[j], &c[k - j]);
     }
-    s / b[0].clone()
+    (a[k].clone() - s.sum()) / b[0].clone()
 }
 
-/// u_k of u = w^q (w_0 > 0), given u_0..u_{k−1}; k ≥ 1.
+/// u_k of u = w^q (w_0 > 0), given u_0..u_{k−1}; k ≥ 1. With the scaled coefficients
+/// dw_m = m·w_m (of w′) and ju_j = j·u_j (of t·u′), the recurrence
+/// u_k = 1/(k w_0) Σ_{j<k} (q(k−j) − j) w_{k−j} u_j is evaluated as
+///
+/// ```text
+/// u_k = (q · Σ_{j<k} dw_{k−j} u_j − Σ_{0<j<k} w_{k−j} ju_j) / (k w_0),
+/// ```
+///
+/// two plain sums of products (each a [`Real::Dot`]) and one product by q: for an interval q,
+/// q enters once, so the width it contributes is |Σ dw u|·wid q ≤ Σ (k−j)|w u|·wid q, never
+/// more than the term-by-term factors' q(k−j) − j.
 #[inline]
-pub fn pow_k<R: Real>(w: &[R], u: &[R], q: &R, k: usize) -> R {
-    let mut s = R::zero();
-    for j in 0..k {
-        let f = q.clone() * R::from_int((k - j) as i64) - R::from_int(j as i64);
-        s = s + f * w[k - j].clone() * u[j].clone();
+pub fn pow_k<R: Real>(w: &[R], dw: &[R], u: &[R], ju: &[R], q: &R, k: usize) -> R {
+    let mut a = R::Dot::new();
+    let mut b = R::Dot::new();
+    a.add_prod(&dw[k], &u[0]);
+    for j in 1..k {
+        a.add_prod(&dw[k - j], &u[j]);
+        b.add_prod(&w[k - j], &ju[j]);
     }
-    s / (R::from_int(k as i64) * w[0].clone())
+    ((a.sum().mul_constant(q) - b.sum()) / w[0].clone()).div_int(k as i64)
 }
 
 /// The branch sign of a series: that of its constant term, or for an exact zero (f64) that of
@@ -114,13 +127,16 @@ pub fn pow_series<R: Real>(w: &[R], q: &R, kind: PowKind, s: Option<i8>) -> Vec<
     };
     let mut u = Vec::with_capacity(kk);
     u.push(sw[0].apow(q));
+    let dw: Vec<R> = (0..kk).map(|m| sw[m].mul_int(m as i64)).collect();
+    let mut ju = vec![R::zero()];
     if sw[0].lo() == 0.0 && sw[0].hi() == 0.0 && kk > 1 {
         // a zero base: the branch point itself, no Taylor expansion (unless q is a small
         // integer, handled above)
         u.extend((1..kk).map(|_| R::unbounded()));
     } else {
         for k in 1..kk {
-            let c = pow_k(&sw, &u, q, k);
+            let c = pow_k(&sw, &dw, &u, &ju, q, k);
+            ju.push(c.mul_int(k as i64));
             u.push(c);
         }
     }

@@ -55,14 +55,23 @@ pub fn taylor_eval<const N: usize>(
     rem: &[Interval; N],
     s: Interval,
 ) -> [Interval; N] {
+    use crate::arith::ulp::Ulp;
     let k = coefs.len();
-    let sk = crate::arith::elementary::powi_nonneg(s, k as u32);
+    if s.is_empty() || coefs.iter().any(|c| c.iter().any(|x| x.is_empty())) {
+        return [Interval::EMPTY; N];
+    }
+    // Horner in Ulp arithmetic (inari's enclosure without its rounding-mode switches)
+    let sk = Ulp::of(crate::arith::elementary::powi_nonneg(s, k as u32));
+    let su = Ulp::of(s);
     std::array::from_fn(|i| {
-        let mut p = coefs[k - 1][i];
+        let mut p = Ulp::of(coefs[k - 1][i]);
         for c in coefs.iter().rev().skip(1) {
-            p = p * s + c[i];
+            p = p * su + Ulp::of(c[i]);
         }
-        p + rem[i] * sk
+        if rem[i].is_empty() {
+            return Interval::EMPTY;
+        }
+        (p + Ulp::of(rem[i]) * sk).interval()
     })
 }
 

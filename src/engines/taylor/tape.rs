@@ -13,7 +13,7 @@
 //! constant coefficient does not have a certain sign has no expansion, and the jet fails with
 //! [`JetError::Branch`] naming the component — the caller then takes a low-order step across.
 
-use crate::arith::series::{div_k, mul_k};
+use crate::arith::series::{div_k, mul_k, pow_k};
 use crate::arith::{Real, Scalar};
 use std::cell::RefCell;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -133,18 +133,6 @@ pub struct Tape<R, const N: usize> {
     /// Switching components that are kinks: the operand only of |·| (never of a non-analytic
     /// power), so the field continued from one side is analytic across x_i = 0.
     kinks: Vec<usize>,
-    /// For each constant used as an exponent q: the factors q(k−j) − j of the power
-    /// recurrence, row k = 1..=FACTOR_ORDERS, j = 0..k (computed once, in the arithmetic of R).
-    factors: Vec<Option<Vec<R>>>,
-}
-
-/// Orders up to which the power recurrence's factors are tabulated per tape.
-const FACTOR_ORDERS: usize = 40;
-
-/// Index of factor (k, j), 1 ≤ k, j < k, in a triangular table.
-#[inline]
-fn tri(k: usize, j: usize) -> usize {
-    k * (k - 1) / 2 + j
 }
 
 /// A key identifying an operation up to its constants' values (for common subexpressions).
@@ -268,28 +256,12 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 })
             })
             .collect();
-        let mut factors: Vec<Option<Vec<R>>> = vec![None; consts.len()];
-        for op in &ops {
-            if let Op::Spow(_, c) | Op::Apow(_, c) = *op
-                && factors[c].is_none()
-            {
-                let q = &consts[c];
-                let mut t = Vec::with_capacity(tri(FACTOR_ORDERS + 1, 0));
-                for k in 1..=FACTOR_ORDERS {
-                    for j in 0..k {
-                        t.push(q.clone() * R::from_int((k - j) as i64) - R::from_int(j as i64));
-                    }
-                }
-                factors[c] = Some(t);
-            }
-        }
         Self {
             ops,
             consts,
             outputs,
             switching,
             kinks,
-            factors,
         }
     }
 
@@ -301,11 +273,6 @@ impl<R: Real, const N: usize> Tape<R, N> {
             outputs: self.outputs.clone(),
             switching: self.switching.clone(),
             kinks: self.kinks.clone(),
-            factors: self
-                .factors
-                .iter()
-                .map(|t| t.as_ref().map(|t| t.iter().map(&f).collect()))
-                .collect(),
         }
     }
 
@@ -386,7 +353,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
         let k1 = order + 1;
         let nops = self.ops.len();
         ws.reset(nops, k1);
-        let Workspace { c, aux, sign } = ws;
+        let Workspace { c, scratch, sign } = ws;
         for k in 0..k1 {
             for (i, op) in self.ops.iter().enumerate() {
                 let at = |n: usize, j: usize| &c[n * k1 + j];
@@ -395,7 +362,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         if k == 0 {
                             x0[v].clone()
                         } else {
-                            c[self.outputs[v] * k1 + k - 1].clone() / R::from_int(k as i64)
+                            c[self.outputs[v] * k1 + k - 1].div_int(k as i64)
                         }
                     }
                     Op::Add(a, b) => at(a, k).clone() + at(b, k).clone(),
@@ -435,7 +402,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         if k == 0 {
                             sign[i] = sign[j];
                         }
-                        let u = aux[j * k1 + k].clone();
+                        let u = scratch.u[j * k1 + k].clone();
                         if signed && sign[j] < 0 { -u } else { u }
                     }
                     Op::Spow(a, q) | Op::Apow(a, q) => {
@@ -460,18 +427,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                                 if k == 0 {
                                     sign[i] = self.sign_of(a, at(a, 0))?;
                                 }
-                                pow_node(
-                                    c,
-                                    aux,
-                                    sign[i],
-                                    a,
-                                    i,
-                                    k,
-                                    k1,
-                                    qv,
-                                    self.factors[q].as_deref(),
-                                    signed,
-                                )
+                                pow_node(c, scratch, sign[i], a, i, k, k1, qv, signed)
                             }
                         }
                     }
@@ -508,53 +464,56 @@ pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
     }
 }
 
-/// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: with w̃ = s·w
-/// and ũ = w̃^q, ũ_0 = w̃_0^q, ũ_k = 1/(k w̃_0) Σ_{j<k} (q(k−j) − j) w̃_{k−j} ũ_j; the node
-/// is s·ũ (signed) or ũ (absolute). ũ is kept in `aux`. The factors q(k−j) − j are constants:
-/// they multiply by [`Real::mul_constant`].
+/// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: ũ = (s w)^q,
+/// ũ_0 = |w_0|^q and for k ≥ 1 the power recurrence [`pow_k`] on w itself (it is linear and
+/// homogeneous in w, so the sign s cancels); the node is s·ũ (signed) or ũ (absolute). ũ, the
+/// scaled coefficients m·w_m and j·ũ_j are kept in `scratch`.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn pow_node<R: Real>(
     c: &[R],
-    aux: &mut [R],
+    scratch: &mut PowScratch<R>,
     s: i8,
     a: usize,
     i: usize,
     k: usize,
     k1: usize,
     q: &R,
-    factors: Option<&[R]>,
     signed: bool,
 ) -> R {
-    let w = |j: usize| {
-        if s > 0 {
-            c[a * k1 + j].clone()
-        } else {
-            -c[a * k1 + j].clone()
-        }
-    };
+    let (w, at) = (&c[a * k1..a * k1 + k + 1], i * k1);
     let u = if k == 0 {
-        Real::apow(&w(0), q)
+        let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
+        Real::apow(&w0, q)
     } else {
-        let mut acc = R::zero();
-        for j in 0..k {
-            let f = match factors {
-                Some(t) if k <= FACTOR_ORDERS => t[tri(k, j)].clone(),
-                _ => q.mul_constant(&R::from_int((k - j) as i64)) - R::from_int(j as i64),
-            };
-            acc = acc + w(k - j).mul_constant(&f) * aux[i * k1 + j].clone();
-        }
-        acc / w(0).mul_constant(&R::from_int(k as i64))
+        scratch.dw[at + k] = w[k].mul_int(k as i64);
+        pow_k(
+            w,
+            &scratch.dw[at..at + k + 1],
+            &scratch.u[at..at + k],
+            &scratch.ju[at..at + k],
+            q,
+            k,
+        )
     };
-    aux[i * k1 + k] = u.clone();
+    scratch.ju[at + k] = u.mul_int(k as i64);
+    scratch.u[at + k] = u.clone();
     if signed && s < 0 { -u } else { u }
+}
+
+/// Per-node storage of the power recurrences: ũ_k, k·w_k, k·ũ_k.
+#[derive(Debug)]
+struct PowScratch<R> {
+    u: Vec<R>,
+    dw: Vec<R>,
+    ju: Vec<R>,
 }
 
 /// Reusable storage for [`Tape::jet`].
 #[derive(Debug)]
 pub struct Workspace<R> {
     c: Vec<R>,
-    aux: Vec<R>,
+    scratch: PowScratch<R>,
     sign: Vec<i8>,
 }
 
@@ -562,7 +521,11 @@ impl<R> Default for Workspace<R> {
     fn default() -> Self {
         Self {
             c: Vec::new(),
-            aux: Vec::new(),
+            scratch: PowScratch {
+                u: Vec::new(),
+                dw: Vec::new(),
+                ju: Vec::new(),
+            },
             sign: Vec::new(),
         }
     }
@@ -573,7 +536,11 @@ impl<R: Real> Workspace<R> {
         let n = nops * k1;
         if self.c.len() != n {
             self.c = vec![R::zero(); n];
-            self.aux = vec![R::zero(); n];
+            self.scratch = PowScratch {
+                u: vec![R::zero(); n],
+                dw: vec![R::zero(); n],
+                ju: vec![R::zero(); n],
+            };
         }
         if self.sign.len() != nops {
             self.sign = vec![1; nops];

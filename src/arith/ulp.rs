@@ -1,0 +1,307 @@
+//! Interval arithmetic with directed rounding recovered from round-to-nearest, for short hot
+//! loops (the series of [`super::elementary`], Horner evaluation of Taylor polynomials).
+//!
+//! inari rounds each endpoint in the right direction by switching the rounding mode (MXCSR)
+//! around every operation; that switch costs more than the arithmetic. Here each endpoint is
+//! computed in round-to-nearest together with its exact error, and moved one floating-point
+//! number outwards only when the error points that way, which is exactly the directed rounding:
+//!
+//! - a sum s = fl(a + b): TwoSum (Knuth) gives e with a + b = s + e exactly (no underflow
+//!   error for sums); rounded down is `next_down(s)` if e < 0, else s;
+//! - a product p = fl(a·b): the FMA gives e = a·b − p exactly when |p| ≥ 2^−969 (the residual
+//!   is then representable); below that, where the residual may not be, p is stepped outwards
+//!   unconditionally (valid: the rounding error is under one spacing);
+//! - an overflow to ±∞ in the wrong direction is replaced by ±f64::MAX, and 0·∞ counts as 0
+//!   (the set-based product).
+//!
+//! So results equal inari's (tests below check enclosure of the exact rational results).
+
+use inari::Interval;
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A closed interval [lo, hi] of finite or infinite f64 endpoints, lo ≤ hi (no empty set: the
+/// callers convert from non-empty inari intervals and back).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ulp {
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Ulp {
+    /// The thin interval [x, x].
+    #[inline]
+    pub const fn point(x: f64) -> Self {
+        Self { lo: x, hi: x }
+    }
+    /// From a non-empty inari interval.
+    #[inline]
+    pub fn of(x: Interval) -> Self {
+        debug_assert!(!x.is_empty());
+        Self {
+            lo: x.inf(),
+            hi: x.sup(),
+        }
+    }
+    /// To an inari interval ([−∞, +∞] if an endpoint became NaN).
+    #[inline]
+    pub fn interval(self) -> Interval {
+        Interval::try_from((self.lo, self.hi)).unwrap_or(Interval::ENTIRE)
+    }
+    /// max(|lo|, |hi|).
+    #[inline]
+    pub fn mag(self) -> f64 {
+        self.lo.abs().max(self.hi.abs())
+    }
+    /// x^n for x ≥ 0 by binary powering (each product of nonnegative factors is monotone).
+    pub fn powi_nonneg(self, mut n: u32) -> Self {
+        debug_assert!(self.lo >= 0.0);
+        let (mut base, mut acc) = (self, Self::point(1.0));
+        while n > 0 {
+            if n & 1 == 1 {
+                acc = acc * base;
+            }
+            base = base * base;
+            n >>= 1;
+        }
+        acc
+    }
+}
+
+/// 2^−969: above it a product's FMA residual is exact.
+const RESIDUAL_EXACT: f64 = 2.004168360008973e-292;
+
+/// a + b rounded towards −∞ (`up = false`) or +∞.
+#[inline]
+fn add_dir(a: f64, b: f64, up: bool) -> f64 {
+    let s = a + b;
+    if !s.is_finite() {
+        // a finite overflow rounds to ±MAX in the direction towards 0
+        if a.is_finite() && b.is_finite() {
+            return if s > 0.0 && !up {
+                f64::MAX
+            } else if s < 0.0 && up {
+                -f64::MAX
+            } else {
+                s
+            };
+        }
+        return s;
+    }
+    // TwoSum: a + b = s + e exactly
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    if up && e > 0.0 {
+        s.next_up()
+    } else if !up && e < 0.0 {
+        s.next_down()
+    } else {
+        s
+    }
+}
+
+/// The neighbour of a finite non-zero x away from 0 (`away`) or towards 0, from the bits.
+#[inline(always)]
+fn step(x: f64, up: bool) -> f64 {
+    // for x > 0 going up moves away from 0 (bits + 1); for x < 0 going up moves towards 0
+    let away = (x > 0.0) == up;
+    let b = x.to_bits();
+    f64::from_bits(if away { b + 1 } else { b - 1 })
+}
+
+/// a·b rounded towards −∞ (`up = false`) or +∞; 0·∞ = 0.
+#[inline(always)]
+fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
+    let p = a * b;
+    let m = p.abs();
+    if (RESIDUAL_EXACT..=f64::MAX).contains(&m) {
+        // the common case: finite, residual exact
+        let e = a.mul_add(b, -p);
+        if (up && e > 0.0) || (!up && e < 0.0) {
+            step(p, up)
+        } else {
+            p
+        }
+    } else {
+        mul_dir_rare(a, b, p, up)
+    }
+}
+
+/// [`mul_dir`] off its common case: zero operands (0·∞ = 0), underflow (stepped outwards
+/// unconditionally), overflow (±MAX towards 0 when the operands are finite) and infinities.
+#[cold]
+fn mul_dir_rare(a: f64, b: f64, p: f64, up: bool) -> f64 {
+    if a == 0.0 || b == 0.0 {
+        return 0.0;
+    }
+    if p.is_finite() {
+        // |p| < 2^−969, possibly 0 after underflow
+        return if up { p.next_up() } else { p.next_down() };
+    }
+    if a.is_finite() && b.is_finite() {
+        if p > 0.0 && !up {
+            return f64::MAX;
+        }
+        if p < 0.0 && up {
+            return -f64::MAX;
+        }
+    }
+    p
+}
+
+impl Add for Ulp {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self {
+            lo: add_dir(self.lo, o.lo, false),
+            hi: add_dir(self.hi, o.hi, true),
+        }
+    }
+}
+
+impl Sub for Ulp {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        self + (-o)
+    }
+}
+
+impl Neg for Ulp {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self {
+            lo: -self.hi,
+            hi: -self.lo,
+        }
+    }
+}
+
+impl Mul for Ulp {
+    type Output = Self;
+    /// The classic case table when both factors have a certain sign (two products), else
+    /// [min, max] of the four endpoint products; each product rounded in its direction.
+    #[inline]
+    fn mul(self, o: Self) -> Self {
+        let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
+        let (lo, hi) = match (a >= 0.0, b <= 0.0, c >= 0.0, d <= 0.0) {
+            (true, _, true, _) => ((a, c), (b, d)),
+            (true, _, _, true) => ((b, c), (a, d)),
+            (_, true, true, _) => ((a, d), (b, c)),
+            (_, true, _, true) => ((b, d), (a, c)),
+            _ => {
+                return Self {
+                    lo: mul_dir(a, c, false)
+                        .min(mul_dir(a, d, false))
+                        .min(mul_dir(b, c, false).min(mul_dir(b, d, false))),
+                    hi: mul_dir(a, c, true)
+                        .max(mul_dir(a, d, true))
+                        .max(mul_dir(b, c, true).max(mul_dir(b, d, true))),
+                };
+            }
+        };
+        Self {
+            lo: mul_dir(lo.0, lo.1, false),
+            hi: mul_dir(hi.0, hi.1, true),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rug::Rational;
+
+    fn q(x: f64) -> Rational {
+        Rational::from_f64(x).unwrap()
+    }
+
+    fn contains(r: Ulp, lo: &Rational, hi: &Rational) -> bool {
+        q(r.lo) <= *lo && *hi <= q(r.hi)
+    }
+
+    /// Every operation encloses the exact result of exact endpoints over many binades
+    /// (subnormal and overflowing results included), and equals inari's directed rounding.
+    #[test]
+    fn operations_enclose_the_exact_results() {
+        let mut seed = 0x9e3779b97f4a7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let float = move |r: u64| {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let e = (r % 2098) as i32 - 1075;
+            let x = m * 2f64.powi(e);
+            if r & 2048 != 0 { -x } else { x }
+        };
+        for i in 0..50_000 {
+            let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
+            let x = Ulp {
+                lo: a.min(b),
+                hi: a.max(b),
+            };
+            let y = if i % 3 == 0 {
+                Ulp::point(c)
+            } else {
+                Ulp {
+                    lo: c.min(d),
+                    hi: c.max(d),
+                }
+            };
+            let ends = |u: Ulp| [q(u.lo), q(u.hi)];
+            // sum and difference
+            let s = x + y;
+            if s.lo.is_finite() && s.hi.is_finite() {
+                let lo = q(x.lo) + q(y.lo);
+                let hi = q(x.hi) + q(y.hi);
+                assert!(contains(s, &lo, &hi), "{x:?} + {y:?} = {s:?}");
+            }
+            let dif = x - y;
+            if dif.lo.is_finite() && dif.hi.is_finite() {
+                let lo = q(x.lo) - q(y.hi);
+                let hi = q(x.hi) - q(y.lo);
+                assert!(contains(dif, &lo, &hi), "{x:?} − {y:?} = {dif:?}");
+            }
+            let to = |u: Ulp| Interval::try_from((u.lo, u.hi)).unwrap();
+            assert_eq!(s.interval(), to(x) + to(y), "{x:?} + {y:?}");
+            assert_eq!(dif.interval(), to(x) - to(y), "{x:?} − {y:?}");
+            let p = x * y;
+            let ip = to(x) * to(y);
+            // equal to inari's, but for a product below 2^−969 (stepped out unconditionally):
+            // then at most one spacing wider
+            assert!(ip.subset(p.interval()), "{x:?} · {y:?}: {p:?} vs {ip:?}");
+            assert!(
+                p.lo >= ip.inf().next_down() && p.hi <= ip.sup().next_up(),
+                "{x:?} · {y:?}: {p:?} vs {ip:?}"
+            );
+            if p.lo.is_finite() && p.hi.is_finite() {
+                let mut ps = Vec::new();
+                for u in ends(x) {
+                    for v in ends(y) {
+                        ps.push(Rational::from(&u * &v));
+                    }
+                }
+                let lo = ps.iter().min().unwrap().clone();
+                let hi = ps.iter().max().unwrap().clone();
+                assert!(contains(p, &lo, &hi), "{x:?} · {y:?} = {p:?}");
+            }
+        }
+        assert_eq!(
+            Ulp::point(0.0)
+                * Ulp {
+                    lo: 1.0,
+                    hi: f64::INFINITY
+                },
+            Ulp::point(0.0)
+        );
+        assert_eq!(Ulp::point(2.0).powi_nonneg(0), Ulp::point(1.0));
+        let c = Ulp::point(1.0 / 3.0).powi_nonneg(3);
+        let t = q(1.0 / 3.0);
+        let t3 = Rational::from(&t * &t) * &t;
+        assert!(contains(c, &t3, &t3), "{c:?}");
+    }
+}
