@@ -9,6 +9,7 @@
 //! §2.2 and Thm. 3.1; the same idea as Rump's fast interval dot products in INTLAB).
 //! For duals the accumulator is one per component.
 
+use super::ulp::Ulp;
 use inari::Interval;
 
 /// An accumulator of Σ aⱼ·bⱼ over a number type `R`.
@@ -77,9 +78,9 @@ pub struct IntervalDot {
 /// The most terms one accumulator takes: n(n + 1) ≤ 2^52 with a wide margin.
 const MAX_TERMS: u32 = 1 << 24;
 
-impl Dot<Interval> for IntervalDot {
+impl IntervalDot {
     #[inline]
-    fn new() -> Self {
+    fn empty() -> Self {
         Self {
             lo: 0.0,
             hi: 0.0,
@@ -88,9 +89,9 @@ impl Dot<Interval> for IntervalDot {
             n: 0,
         }
     }
+    /// Adds [a0, a1]·[b0, b1].
     #[inline]
-    fn add_prod(&mut self, a: &Interval, b: &Interval) {
-        let (a0, a1, b0, b1) = (a.inf(), a.sup(), b.inf(), b.sup());
+    fn add_ends(&mut self, a0: f64, a1: f64, b0: f64, b1: f64) {
         let (p, q, r, s) = (a0 * b0, a0 * b1, a1 * b0, a1 * b1);
         let lo = p.min(q).min(r.min(s));
         let hi = p.max(q).max(r.max(s));
@@ -100,14 +101,15 @@ impl Dot<Interval> for IntervalDot {
         self.abs_hi += hi.abs();
         self.n += 1;
     }
+    /// The enclosure (lo, hi) of the sum; (−∞, +∞) when not finite.
     #[inline]
-    fn sum(self) -> Interval {
+    fn ends(self) -> (f64, f64) {
         let finite = self.lo.is_finite()
             && self.hi.is_finite()
             && self.abs_lo.is_finite()
             && self.abs_hi.is_finite();
         if !finite || self.n > MAX_TERMS {
-            return Interval::ENTIRE;
+            return (f64::NEG_INFINITY, f64::INFINITY);
         }
         // (n + 1)·u is exact; c·A is rounded up by a step (c·A ≥ 2^−1021·u·A is normal
         // unless A is tiny), then FLOOR added and rounded up again
@@ -121,7 +123,42 @@ impl Dot<Interval> for IntervalDot {
         };
         let lo = (self.lo - err(self.abs_lo)).next_down();
         let hi = (self.hi + err(self.abs_hi)).next_up();
-        Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+        (lo, hi)
+    }
+}
+
+impl Dot<Interval> for IntervalDot {
+    #[inline]
+    fn new() -> Self {
+        Self::empty()
+    }
+    #[inline]
+    fn add_prod(&mut self, a: &Interval, b: &Interval) {
+        self.add_ends(a.inf(), a.sup(), b.inf(), b.sup());
+    }
+    #[inline]
+    fn sum(self) -> Interval {
+        Interval::try_from(self.ends()).unwrap_or(Interval::ENTIRE)
+    }
+}
+
+/// The same accumulator over [`Ulp`] intervals (endpoints read directly).
+#[derive(Clone, Copy, Debug)]
+pub struct UlpDot(IntervalDot);
+
+impl Dot<Ulp> for UlpDot {
+    #[inline]
+    fn new() -> Self {
+        Self(IntervalDot::empty())
+    }
+    #[inline]
+    fn add_prod(&mut self, a: &Ulp, b: &Ulp) {
+        self.0.add_ends(a.lo, a.hi, b.lo, b.hi);
+    }
+    #[inline]
+    fn sum(self) -> Ulp {
+        let (lo, hi) = self.0.ends();
+        Ulp { lo, hi }
     }
 }
 

@@ -70,7 +70,7 @@ const RESIDUAL_EXACT: f64 = 2.004168360008973e-292; // 2^-969
 /// the exact residual (FMA: x·k − p, or x − p·k for a quotient, both representable above
 /// 2^−969); returns (lower, upper) bounds, or None when not finite.
 #[inline]
-fn int_op_bounds(x: f64, k: f64, div: bool) -> Option<(f64, f64)> {
+pub(crate) fn int_op_bounds(x: f64, k: f64, div: bool) -> Option<(f64, f64)> {
     let p = if div { x / k } else { x * k };
     if !p.is_finite() || !x.is_finite() {
         return None;

@@ -16,8 +16,9 @@
 //!
 //! So results equal inari's (tests below check enclosure of the exact rational results).
 
+use super::real::Real;
 use inari::Interval;
-use std::ops::{Add, Mul, Neg, Sub};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A closed interval [lo, hi] of finite or infinite f64 endpoints, lo ≤ hi (no empty set: the
 /// callers convert from non-empty inari intervals and back).
@@ -33,10 +34,18 @@ impl Ulp {
     pub const fn point(x: f64) -> Self {
         Self { lo: x, hi: x }
     }
-    /// From a non-empty inari interval.
+    /// [−∞, +∞].
+    pub const ENTIRE: Self = Self {
+        lo: f64::NEG_INFINITY,
+        hi: f64::INFINITY,
+    };
+    /// From an inari interval (the empty set, which only an operation outside its domain
+    /// yields, becomes [−∞, +∞]: still an enclosure of whatever the caller meant).
     #[inline]
     pub fn of(x: Interval) -> Self {
-        debug_assert!(!x.is_empty());
+        if x.is_empty() {
+            return Self::ENTIRE;
+        }
         Self {
             lo: x.inf(),
             hi: x.sup(),
@@ -208,6 +217,156 @@ impl Mul for Ulp {
     }
 }
 
+/// a/b rounded towards −∞ (`up = false`) or +∞, for b ≠ 0 finite or infinite.
+#[inline(always)]
+fn div_dir(a: f64, b: f64, up: bool) -> f64 {
+    let q = a / b;
+    let m = q.abs();
+    if (RESIDUAL_EXACT..=f64::MAX).contains(&m) && a.abs() >= RESIDUAL_EXACT && b.is_finite() {
+        // the remainder a − q·b is exact: sign(a/b − q) = sign(remainder)·sign(b)
+        let r = (-q).mul_add(b, a);
+        let above = if b > 0.0 { r > 0.0 } else { r < 0.0 };
+        let below = if b > 0.0 { r < 0.0 } else { r > 0.0 };
+        if (up && above) || (!up && below) {
+            step(q, up)
+        } else {
+            q
+        }
+    } else {
+        div_dir_rare(a, q, up)
+    }
+}
+
+#[cold]
+fn div_dir_rare(a: f64, q: f64, up: bool) -> f64 {
+    if a == 0.0 {
+        return 0.0;
+    }
+    if q.is_finite() {
+        return if up { q.next_up() } else { q.next_down() };
+    }
+    if a.is_finite() {
+        // overflow of a finite quotient
+        if q > 0.0 && !up {
+            return f64::MAX;
+        }
+        if q < 0.0 && up {
+            return -f64::MAX;
+        }
+    }
+    q
+}
+
+impl Div for Ulp {
+    type Output = Self;
+    /// For a divisor of certain sign, [min, max] of the endpoint quotients, each rounded in its
+    /// direction; [−∞, +∞] when the divisor reaches 0.
+    #[inline]
+    fn div(self, o: Self) -> Self {
+        let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
+        if !(c > 0.0 || d < 0.0) || a.is_nan() || b.is_nan() {
+            return Self::ENTIRE;
+        }
+        let lo = div_dir(a, c, false)
+            .min(div_dir(a, d, false))
+            .min(div_dir(b, c, false).min(div_dir(b, d, false)));
+        let hi = div_dir(a, c, true)
+            .max(div_dir(a, d, true))
+            .max(div_dir(b, c, true).max(div_dir(b, d, true)));
+        Self { lo, hi }
+    }
+}
+
+/// [`Ulp`] as a coefficient field of the rigorous engine's jets: +, −, ×, ÷ and integer
+/// scalings here; powers, |·| and √ through inari's enclosures ([`super::interval`]).
+impl Real for Ulp {
+    type Dot = super::dot::UlpDot;
+    fn from_int(k: i64) -> Self {
+        let x = k as f64;
+        assert!(x as i64 == k, "integer constant {k} is not exact in f64");
+        Self::point(x)
+    }
+    fn from_exact_f64(x: f64) -> Self {
+        Self::point(x)
+    }
+    fn parse_decimal(s: &str) -> Result<Self, String> {
+        Interval::parse_decimal(s).map(Self::of)
+    }
+    fn unbounded() -> Self {
+        Self::ENTIRE
+    }
+    #[inline]
+    fn mul_int(&self, k: i64) -> Self {
+        self.int_op(k, false)
+    }
+    #[inline]
+    fn div_int(&self, k: i64) -> Self {
+        self.int_op(k, true)
+    }
+    fn abs(&self) -> Self {
+        if self.lo >= 0.0 {
+            *self
+        } else if self.hi <= 0.0 {
+            -*self
+        } else {
+            Self {
+                lo: 0.0,
+                hi: self.hi.max(-self.lo),
+            }
+        }
+    }
+    fn sqrt(&self) -> Self {
+        Self::of(Real::sqrt(&self.interval()))
+    }
+    fn pow(&self, y: &Self) -> Self {
+        Self::of(Real::pow(&self.interval(), &y.interval()))
+    }
+    fn spow(&self, q: &Self) -> Self {
+        Self::of(Real::spow(&self.interval(), &q.interval()))
+    }
+    fn apow(&self, q: &Self) -> Self {
+        Self::of(Real::apow(&self.interval(), &q.interval()))
+    }
+    #[inline]
+    fn lo(&self) -> f64 {
+        self.lo
+    }
+    #[inline]
+    fn hi(&self) -> f64 {
+        self.hi
+    }
+    fn mid(&self) -> f64 {
+        self.interval().mid()
+    }
+}
+
+impl Ulp {
+    /// x·k or x/k for an exact integer k (k ≠ 0 for a quotient) by the exact-residual method
+    /// of [`super::interval`].
+    #[inline]
+    fn int_op(self, k: i64, div: bool) -> Self {
+        if k == 0 && !div {
+            return Self::point(0.0);
+        }
+        let kf = k as f64;
+        let (a, b) = if k > 0 {
+            (self.lo, self.hi)
+        } else {
+            (self.hi, self.lo)
+        };
+        match (
+            super::interval::int_op_bounds(a, kf, div),
+            super::interval::int_op_bounds(b, kf, div),
+        ) {
+            (Some((lo, _)), Some((_, hi))) => Self { lo, hi },
+            _ => {
+                let ki = Self::point(kf);
+                if div { self / ki } else { self * ki }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -278,6 +437,27 @@ mod tests {
                 p.lo >= ip.inf().next_down() && p.hi <= ip.sup().next_up(),
                 "{x:?} · {y:?}: {p:?} vs {ip:?}"
             );
+            // quotient (divisor of certain sign)
+            if y.lo > 0.0 || y.hi < 0.0 {
+                let d = x / y;
+                let id = to(x) / to(y);
+                assert!(id.subset(d.interval()), "{x:?} / {y:?}: {d:?} vs {id:?}");
+                assert!(
+                    d.lo >= id.inf().next_down() && d.hi <= id.sup().next_up(),
+                    "{x:?} / {y:?}: {d:?} vs {id:?}"
+                );
+                if d.lo.is_finite() && d.hi.is_finite() {
+                    let qs: Vec<Rational> = ends(x)
+                        .iter()
+                        .flat_map(|u| ends(y).into_iter().map(move |v| Rational::from(u / &v)))
+                        .collect();
+                    let lo = qs.iter().min().unwrap();
+                    let hi = qs.iter().max().unwrap();
+                    assert!(contains(d, lo, hi), "{x:?} / {y:?} = {d:?}");
+                }
+            } else {
+                assert_eq!(x / y, Ulp::ENTIRE);
+            }
             if p.lo.is_finite() && p.hi.is_finite() {
                 let mut ps = Vec::new();
                 for u in ends(x) {

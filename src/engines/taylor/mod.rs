@@ -19,7 +19,6 @@ pub mod tape;
 pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
 
-use crate::arith::dual::Dual;
 use crate::models::CollisionModel;
 use tape::{Tape, Workspace};
 
@@ -123,10 +122,7 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N>, const N: usize>(
         o
     });
     let switching: Vec<usize> = tape.switching().to_vec();
-    let tapes = step::Tapes {
-        dual: tape.map(|c| Dual::constant(*c)),
-        plain: tape.clone(),
-    };
+    let tapes = step::Tapes::of(&tape);
     let mut ws = step::Workspaces::default();
     let mut ev_ws = Workspace::default();
     let mut x = model.initial_state();

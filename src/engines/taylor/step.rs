@@ -26,6 +26,7 @@ use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
 use super::tape::{Tape, Workspace};
 use crate::arith::dual::Dual;
+use crate::arith::ulp::Ulp;
 use inari::Interval;
 
 /// [0, h].
@@ -55,7 +56,6 @@ pub fn taylor_eval<const N: usize>(
     rem: &[Interval; N],
     s: Interval,
 ) -> [Interval; N] {
-    use crate::arith::ulp::Ulp;
     let k = coefs.len();
     if s.is_empty() || coefs.iter().any(|c| c.iter().any(|x| x.is_empty())) {
         return [Interval::EMPTY; N];
@@ -93,18 +93,43 @@ pub enum TaylorFail {
 }
 
 /// The tapes a Taylor step runs: the field over intervals, and over interval duals (for the
-/// Jacobian of the Taylor coefficients with respect to the initial state).
+/// Jacobian of the Taylor coefficients with respect to the initial state). Both in [`Ulp`]
+/// arithmetic (inari's enclosures without its rounding-mode switches); the jets are converted
+/// to inari intervals once computed.
 pub struct Tapes<const N: usize> {
-    pub plain: Tape<Interval, N>,
-    pub dual: Tape<Dual<Interval, N>, N>,
+    pub plain: Tape<Ulp, N>,
+    pub dual: Tape<Dual<Ulp, N>, N>,
+}
+
+impl<const N: usize> Tapes<N> {
+    /// The jet tapes of an interval tape (constants converted exactly: same endpoints).
+    pub fn of(tape: &Tape<Interval, N>) -> Self {
+        Self {
+            plain: tape.map(|c| Ulp::of(*c)),
+            dual: tape.map(|c| Dual::constant(Ulp::of(*c))),
+        }
+    }
+}
+
+/// [`Tape::jet_on`] over [`Ulp`] for an inari box, the coefficients as inari intervals.
+fn jet_iv<const N: usize>(
+    tape: &Tape<Ulp, N>,
+    x: &[Interval; N],
+    order: usize,
+    ws: &mut Workspace<Ulp>,
+    side: &[i8; N],
+) -> Result<[Vec<Interval>; N], super::tape::JetError> {
+    let xu = x.map(Ulp::of);
+    let j = tape.jet_on(&xu, order, ws, side)?;
+    Ok(j.map(|c| c.into_iter().map(Ulp::interval).collect()))
 }
 
 /// Reusable jet storage.
 #[derive(Default)]
 pub struct Workspaces<const N: usize> {
-    pub point: Workspace<Interval>,
-    pub apriori: Workspace<Interval>,
-    pub dual: Workspace<Dual<Interval, N>>,
+    pub point: Workspace<Ulp>,
+    pub apriori: Workspace<Ulp>,
+    pub dual: Workspace<Dual<Ulp, N>>,
     /// ρ = wid(x_K(Y)) / |x_K(X)| of the last accepted step: how much wider the remainder
     /// coefficient over the a-priori box is than over X. The first trial step is
     /// shortened by ρ^(−1/K) so that it usually passes (a choice of h only; every step is
@@ -149,17 +174,13 @@ pub fn taylor_step<const N: usize>(
     let ar = rep.offsets();
     let kd = jacobian_orders(k);
     // the midpoint's coefficients are only needed where the mean-value form is used (k < kd)
-    let jm = tapes
-        .plain
-        .jet_on(&xm, kd - 1, &mut ws.point, side)
+    let jm = jet_iv(&tapes.plain, &xm, kd - 1, &mut ws.point, side)
         .map_err(|_| TaylorFail::AtSurface)?;
-    let jx = tapes
-        .plain
-        .jet_on(x, k, &mut ws.apriori, side)
-        .map_err(|_| TaylorFail::AtSurface)?;
+    let jx =
+        jet_iv(&tapes.plain, x, k, &mut ws.apriori, side).map_err(|_| TaylorFail::AtSurface)?;
     let jd = tapes
         .dual
-        .jet_on(&Dual::seed(x), kd - 1, &mut ws.dual, side)
+        .jet_on(&Dual::seed(&x.map(Ulp::of)), kd - 1, &mut ws.dual, side)
         .map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients (over X: a thin box)
     let mut h = h_max;
@@ -192,7 +213,7 @@ pub fn taylor_step<const N: usize>(
         .collect();
     let top: [Interval; N] = std::array::from_fn(|i| jx[i][k]);
     let dk: Vec<[[Interval; N]; N]> = (0..kd)
-        .map(|kk| std::array::from_fn(|i| jd[i][kk].d))
+        .map(|kk| std::array::from_fn(|i| jd[i][kk].d.map(Ulp::interval)))
         .collect();
     while h >= h_min {
         let t1 = t0 + h;
@@ -202,7 +223,7 @@ pub fn taylor_step<const N: usize>(
         // the next trial step as a fraction of h: halved unless the remainder says more
         let mut shrink = 0.5;
         for _ in 0..4 {
-            let Ok(jy) = tapes.plain.jet_on(&y, k, &mut ws.apriori, side) else {
+            let Ok(jy) = jet_iv(&tapes.plain, &y, k, &mut ws.apriori, side) else {
                 break;
             };
             let rem: [Interval; N] = std::array::from_fn(|i| jy[i][k]);
