@@ -102,7 +102,7 @@ impl IntervalDot {
         self.n += 1;
     }
     /// The enclosure (lo, hi) of the sum; (−∞, +∞) when not finite.
-    #[inline]
+    #[inline(always)]
     fn ends(self) -> (f64, f64) {
         let finite = self.lo.is_finite()
             && self.hi.is_finite()

@@ -267,13 +267,27 @@ impl Div for Ulp {
         if !(c > 0.0 || d < 0.0) || a.is_nan() || b.is_nan() {
             return Self::ENTIRE;
         }
-        let lo = div_dir(a, c, false)
-            .min(div_dir(a, d, false))
-            .min(div_dir(b, c, false).min(div_dir(b, d, false)));
-        let hi = div_dir(a, c, true)
-            .max(div_dir(a, d, true))
-            .max(div_dir(b, c, true).max(div_dir(b, d, true)));
-        Self { lo, hi }
+        // divisor of certain sign: the case table when the dividend has one too
+        let (lo, hi) = match (a >= 0.0, b <= 0.0, c > 0.0) {
+            (true, _, true) => ((a, d), (b, c)),
+            (true, _, false) => ((b, d), (a, c)),
+            (_, true, true) => ((a, c), (b, d)),
+            (_, true, false) => ((b, c), (a, d)),
+            _ => {
+                return Self {
+                    lo: div_dir(a, c, false)
+                        .min(div_dir(a, d, false))
+                        .min(div_dir(b, c, false).min(div_dir(b, d, false))),
+                    hi: div_dir(a, c, true)
+                        .max(div_dir(a, d, true))
+                        .max(div_dir(b, c, true).max(div_dir(b, d, true))),
+                };
+            }
+        };
+        Self {
+            lo: div_dir(lo.0, lo.1, false),
+            hi: div_dir(hi.0, hi.1, true),
+        }
     }
 }
 
