@@ -65,19 +65,7 @@ impl<const N: usize> Piece<N> {
                 remainder,
                 ..
             } => {
-                let s = tau(t, *t0);
-                let k = coefs.len();
-                let sk = crate::arith::elementary::powi_nonneg(s, k as u32);
-                std::array::from_fn(|i| {
-                    let mut acc = remainder[i] * sk;
-                    // Horner on the polynomial part, then add the remainder term
-                    let mut p = coefs[k - 1][i];
-                    for c in coefs.iter().rev().skip(1) {
-                        p = p * s + c[i];
-                    }
-                    acc += p;
-                    acc
-                })
+                super::step::taylor_eval(coefs, remainder, tau(t, *t0))
             }
             Piece::LowOrder { t0, x0, slope, .. } => {
                 let s = tau(t, *t0);
