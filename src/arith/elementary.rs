@@ -152,6 +152,9 @@ fn ln_point(x: f64) -> Interval {
 
 /// An enclosure of e^y for a finite y (the series in [`Ulp`] arithmetic).
 fn exp_point(y: f64) -> Interval {
+    if y == 0.0 {
+        return ONE; // exact (so that 1^q, |−1|^q stay exact)
+    }
     if y > 709.8 {
         return Interval::try_from((f64::MAX, f64::INFINITY)).unwrap();
     }
@@ -167,7 +170,11 @@ fn exp_point(y: f64) -> Interval {
     let inv_fact = &coefficients().1;
     let (p, beta) = horner_running(inv_fact, r.lo);
     let tail = 1.5 * r.mag().powi(EXP_TERMS as i32) * inv_fact[EXP_TERMS - 1] / EXP_TERMS as f64;
-    let v = around(p, U_SAFE * beta + 1.42 * U_SAFE + tail, 1.42 * (r.hi - r.lo));
+    let v = around(
+        p,
+        U_SAFE * beta + 1.42 * U_SAFE + tail,
+        1.42 * (r.hi - r.lo),
+    );
     // multiply by 2^k (split to stay in range; outward steps cover underflow)
     let k = k as i32;
     let (k1, k2) = (k / 2, k - k / 2);

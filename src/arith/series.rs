@@ -9,6 +9,7 @@
 //! | c = a·b | c_k = Σ_{j=0}^{k} a_j b_{k−j} |
 //! | c = a/b | c_k = (a_k − Σ_{j=1}^{k} b_j c_{k−j}) / b_0 |
 //! | u = w^q, w_0 > 0 | u_0 = w_0^q, u_k = 1/(k w_0) Σ_{j=0}^{k−1} (q(k−j) − j) w_{k−j} u_j (from w u′ = q u w′) |
+//! | L = ln w, then u = e^{qL} (several powers of one w) | k L_k = (k w_k − Σ_{0<j<k} j L_j w_{k−j})/w_0, u_k = (q/k) Σ_{j=1}^{k} j L_j u_{k−j} |
 //! | \|w\| | s·w_k, s = sign(w_0) |
 //! | \|w\|^(q−1) w | s·(s w)^q |
 //! | \|w\|^q | (s w)^q |
@@ -66,6 +67,31 @@ pub fn pow_k<R: Real>(w: &[R], dw: &[R], u: &[R], ju: &[R], q: &R, k: usize) -> 
         b.add_prod(&w[k - j], &ju[j]);
     }
     ((a.sum().mul_constant(q) - b.sum()) / w[0].clone()).div_int(k as i64)
+}
+
+/// k·L_k of L = ln|w| (w_0 ≠ 0), given jL_j = j·L_j for 0 < j < k; k ≥ 1. From w′ = w L′:
+/// k w_k = Σ_{j=1}^{k} j L_j w_{k−j}, so k L_k = (k w_k − Σ_{0<j<k} jL_j w_{k−j}) / w_0 (the
+/// sign of w cancels: the same for |w| = ±w).
+#[inline]
+pub fn log_k<R: Real>(w: &[R], jl: &[R], k: usize) -> R {
+    let mut d = R::Dot::new();
+    for j in 1..k {
+        d.add_prod(&jl[j], &w[k - j]);
+    }
+    (w[k].mul_int(k as i64) - d.sum()) / w[0].clone()
+}
+
+/// u_k of u = exp(q L) = |w|^q from jL_j = j·L_j (1 ≤ j ≤ k) and u_0..u_{k−1}; k ≥ 1.
+/// From u′ = q L′ u: u_k = (q/k) Σ_{j=1}^{k} jL_j u_{k−j} — one sum per power once the log's
+/// series is known, so several powers of one base cost one log recurrence plus one sum each
+/// (instead of two sums each by [`pow_k`]).
+#[inline]
+pub fn exp_log_k<R: Real>(jl: &[R], u: &[R], q: &R, k: usize) -> R {
+    let mut d = R::Dot::new();
+    for j in 1..=k {
+        d.add_prod(&jl[j], &u[k - j]);
+    }
+    d.sum().mul_constant(q).div_int(k as i64)
 }
 
 /// The branch sign of a series: that of its constant term, or for an exact zero (f64) that of

@@ -95,8 +95,10 @@ pub fn rigorous_impact_over_speeds(
             Interval::try_from((v.inf(), m)).unwrap(),
             Interval::try_from((m, v.sup())).unwrap(),
         );
-        pieces.push((a, prove(a)));
-        pieces.push((b, prove(b)));
+        // the two halves on two threads (rayon)
+        let (ra, rb) = rayon::join(|| prove(a), || prove(b));
+        pieces.push((a, ra));
+        pieces.push((b, rb));
     }
     let mut hull: Option<(Interval, Interval)> = None;
     for (v, r) in &pieces {

@@ -64,9 +64,7 @@ impl<const N: usize> Piece<N> {
                 coefs,
                 remainder,
                 ..
-            } => {
-                super::step::taylor_eval(coefs, remainder, tau(t, *t0))
-            }
+            } => super::step::taylor_eval(coefs, remainder, tau(t, *t0)),
             Piece::LowOrder { t0, x0, slope, .. } => {
                 let s = tau(t, *t0);
                 std::array::from_fn(|i| x0[i] + s * slope[i])
