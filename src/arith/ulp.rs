@@ -84,17 +84,7 @@ const RESIDUAL_EXACT: f64 = 2.004168360008973e-292;
 fn add_dir(a: f64, b: f64, up: bool) -> f64 {
     let s = a + b;
     if !s.is_finite() {
-        // a finite overflow rounds to ±MAX in the direction towards 0
-        if a.is_finite() && b.is_finite() {
-            return if s > 0.0 && !up {
-                f64::MAX
-            } else if s < 0.0 && up {
-                -f64::MAX
-            } else {
-                s
-            };
-        }
-        return s;
+        return rare(s, false, a.is_finite() && b.is_finite(), up);
     }
     // TwoSum: a + b = s + e exactly
     let bb = s - a;
@@ -131,22 +121,23 @@ fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
             p
         }
     } else {
-        mul_dir_rare(a, b, p, up)
+        rare(p, a == 0.0 || b == 0.0, a.is_finite() && b.is_finite(), up)
     }
 }
 
-/// [`mul_dir`] off its common case: zero operands (0·∞ = 0), underflow (stepped outwards
-/// unconditionally), overflow (±MAX towards 0 when the operands are finite) and infinities.
+/// An operation's directed result off the common case: 0 for an exact zero operand (0·∞ = 0
+/// for a product), a finite result below 2^−969 stepped outwards unconditionally (its residual
+/// may not be exact; the rounding error is under one spacing), ±MAX towards 0 for an overflow
+/// of finite operands, else the rounded result itself (±∞, NaN).
 #[cold]
-fn mul_dir_rare(a: f64, b: f64, p: f64, up: bool) -> f64 {
-    if a == 0.0 || b == 0.0 {
+fn rare(p: f64, zero_operand: bool, finite_operands: bool, up: bool) -> f64 {
+    if zero_operand {
         return 0.0;
     }
     if p.is_finite() {
-        // |p| < 2^−969, possibly 0 after underflow
         return if up { p.next_up() } else { p.next_down() };
     }
-    if a.is_finite() && b.is_finite() {
+    if finite_operands {
         if p > 0.0 && !up {
             return f64::MAX;
         }
@@ -233,28 +224,8 @@ fn div_dir(a: f64, b: f64, up: bool) -> f64 {
             q
         }
     } else {
-        div_dir_rare(a, q, up)
+        rare(q, a == 0.0, a.is_finite(), up)
     }
-}
-
-#[cold]
-fn div_dir_rare(a: f64, q: f64, up: bool) -> f64 {
-    if a == 0.0 {
-        return 0.0;
-    }
-    if q.is_finite() {
-        return if up { q.next_up() } else { q.next_down() };
-    }
-    if a.is_finite() {
-        // overflow of a finite quotient
-        if q > 0.0 && !up {
-            return f64::MAX;
-        }
-        if q < 0.0 && up {
-            return -f64::MAX;
-        }
-    }
-    q
 }
 
 impl Div for Ulp {

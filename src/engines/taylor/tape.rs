@@ -135,7 +135,7 @@ pub struct Tape<R, const N: usize> {
     kinks: Vec<usize>,
     /// For each power node that runs a recurrence and shares its operand with another such
     /// node (e.g. |Z|^(p−1)Z and |Z|^n): the first of them, which also keeps the series of
-    /// ln|w| (see [`pow_log_node`]); `None` for every other node.
+    /// ln|w| (see [`pow_node`]); `None` for every other node.
     log_lead: Vec<Option<usize>>,
 }
 
@@ -449,12 +449,8 @@ impl<R: Real, const N: usize> Tape<R, N> {
                                 if k == 0 {
                                     sign[i] = self.sign_of(a, at(a, 0))?;
                                 }
-                                match self.log_lead[i] {
-                                    Some(lead) => pow_log_node(
-                                        c, scratch, sign[i], a, i, lead, k, k1, qv, signed,
-                                    ),
-                                    None => pow_node(c, scratch, sign[i], a, i, k, k1, qv, signed),
-                                }
+                                let lead = self.log_lead[i];
+                                pow_node(c, scratch, sign[i], a, i, lead, k, k1, qv, signed)
                             }
                         }
                     }
@@ -492,9 +488,16 @@ pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
 }
 
 /// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: ũ = (s w)^q,
-/// ũ_0 = |w_0|^q and for k ≥ 1 the power recurrence [`pow_k`] on w itself (it is linear and
-/// homogeneous in w, so the sign s cancels); the node is s·ũ (signed) or ũ (absolute). ũ, the
-/// scaled coefficients m·w_m and j·ũ_j are kept in `scratch`.
+/// ũ_0 = |w_0|^q; the node is s·ũ (signed) or ũ (absolute). For k ≥ 1:
+/// - alone on its operand (`lead` = None): the power recurrence [`pow_k`] on w itself (it is
+///   linear and homogeneous in w, so the sign s cancels), with k·w_k and k·ũ_k kept in
+///   `scratch.dw`, `scratch.ju`;
+/// - sharing its operand with other powers, and the operand's constant coefficient thin
+///   (relative width ≤ 10⁻⁶): node `lead` (the first of them) runs [`log_k`] for L = ln|w|
+///   (its k·L_k in `scratch.dw`), then each power ũ = exp(qL) runs [`exp_log_k`] (one sum per
+///   power instead of two); over wider boxes every power runs [`pow_k`].
+///
+/// ũ itself is kept in `scratch.u` (for the recurrence and for a [`Op::Twin`]).
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn pow_node<R: Real>(
@@ -503,15 +506,28 @@ fn pow_node<R: Real>(
     s: i8,
     a: usize,
     i: usize,
+    lead: Option<usize>,
     k: usize,
     k1: usize,
     q: &R,
     signed: bool,
 ) -> R {
     let (w, at) = (&c[a * k1..a * k1 + k + 1], i * k1);
+    // the shared log only where the operand is thin: over a wide box the two sums of [`pow_k`]
+    // (q entering once) enclose markedly tighter than the log's chained sums
+    if k == 0 && lead == Some(i) {
+        scratch.log_on[i] = w[0].hi() - w[0].lo() <= 1e-6 * w[0].lo().abs().min(w[0].hi().abs());
+    }
+    let lead = lead.filter(|&l| scratch.log_on[l]);
     let u = if k == 0 {
         let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
         Real::apow(&w0, q)
+    } else if let Some(lead) = lead {
+        let lt = lead * k1;
+        if i == lead {
+            scratch.dw[lt + k] = log_k(w, &scratch.dw[lt..lt + k], k);
+        }
+        exp_log_k(&scratch.dw[lt..lt + k + 1], &scratch.u[at..at + k], q, k)
     } else {
         scratch.dw[at + k] = w[k].mul_int(k as i64);
         pow_k(
@@ -523,49 +539,21 @@ fn pow_node<R: Real>(
             k,
         )
     };
-    scratch.ju[at + k] = u.mul_int(k as i64);
+    if lead.is_none() {
+        scratch.ju[at + k] = u.mul_int(k as i64);
+    }
     scratch.u[at + k] = u.clone();
     if signed && s < 0 { -u } else { u }
 }
 
-/// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` whose series of L = ln|w| is kept by
-/// node `lead` (the first power of w): the lead runs [`log_k`] (its k·L_k in `scratch.dw`),
-/// then each power ũ = exp(q L) runs [`exp_log_k`]; ũ_0 = |w_0|^q. As in [`pow_node`] the
-/// node is s·ũ (signed) or ũ.
-#[allow(clippy::too_many_arguments)]
-#[inline]
-fn pow_log_node<R: Real>(
-    c: &[R],
-    scratch: &mut PowScratch<R>,
-    s: i8,
-    a: usize,
-    i: usize,
-    lead: usize,
-    k: usize,
-    k1: usize,
-    q: &R,
-    signed: bool,
-) -> R {
-    let (w, at, lt) = (&c[a * k1..a * k1 + k + 1], i * k1, lead * k1);
-    let u = if k == 0 {
-        let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
-        Real::apow(&w0, q)
-    } else {
-        if i == lead {
-            scratch.dw[lt + k] = log_k(w, &scratch.dw[lt..lt + k], k);
-        }
-        exp_log_k(&scratch.dw[lt..lt + k + 1], &scratch.u[at..at + k], q, k)
-    };
-    scratch.u[at + k] = u.clone();
-    if signed && s < 0 { -u } else { u }
-}
-
-/// Per-node storage of the power recurrences: ũ_k, k·w_k, k·ũ_k.
+/// Per-node storage of the power recurrences: ũ_k, k·w_k (or k·L_k), k·ũ_k, and whether a
+/// shared log runs in this jet.
 #[derive(Debug)]
 struct PowScratch<R> {
     u: Vec<R>,
     dw: Vec<R>,
     ju: Vec<R>,
+    log_on: Vec<bool>,
 }
 
 /// Reusable storage for [`Tape::jet`].
@@ -584,6 +572,7 @@ impl<R> Default for Workspace<R> {
                 u: Vec::new(),
                 dw: Vec::new(),
                 ju: Vec::new(),
+                log_on: Vec::new(),
             },
             sign: Vec::new(),
         }
@@ -599,10 +588,14 @@ impl<R: Real> Workspace<R> {
                 u: vec![R::zero(); n],
                 dw: vec![R::zero(); n],
                 ju: vec![R::zero(); n],
+                log_on: vec![false; nops],
             };
         }
         if self.sign.len() != nops {
             self.sign = vec![1; nops];
+        }
+        if self.scratch.log_on.len() != nops {
+            self.scratch.log_on = vec![false; nops];
         }
     }
 }
