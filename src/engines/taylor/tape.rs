@@ -133,9 +133,9 @@ pub struct Tape<R, const N: usize> {
     /// Switching components that are kinks: the operand only of |·| (never of a non-analytic
     /// power), so the field continued from one side is analytic across x_i = 0.
     kinks: Vec<usize>,
-    /// For each power node that runs a recurrence and shares its operand with another such
-    /// node (e.g. |Z|^(p−1)Z and |Z|^n): the first of them, which also keeps the series of
-    /// ln|w| (see [`pow_node`]); `None` for every other node.
+    /// For each power node that runs a recurrence: the first such node of its operand (e.g.
+    /// of |Z|^(p−1)Z and |Z|^n), which keeps the series of ln|w| for all of them (see
+    /// [`pow_node`]); `None` for every other node.
     log_lead: Vec<Option<usize>>,
 }
 
@@ -260,8 +260,8 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 })
             })
             .collect();
-        // Powers sharing an operand share the series of ln|w| (one recurrence for the log,
-        // then one per power instead of two)
+        // The powers of an operand share the series of ln|w| (one recurrence for the log, then
+        // one single sum per power)
         let recurrence = |op: &Op| match *op {
             Op::Spow(a, c) if !analytic_power(&consts[c], true) => Some(a),
             Op::Apow(a, c) if !analytic_power(&consts[c], false) => Some(a),
@@ -270,10 +270,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
         let log_lead: Vec<Option<usize>> = (0..ops.len())
             .map(|i| {
                 let a = recurrence(&ops[i])?;
-                let users: Vec<usize> = (0..ops.len())
-                    .filter(|&j| recurrence(&ops[j]) == Some(a))
-                    .collect();
-                (users.len() >= 2).then_some(users[0])
+                (0..ops.len()).find(|&j| recurrence(&ops[j]) == Some(a))
             })
             .collect();
         Self {
@@ -449,7 +446,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                                 if k == 0 {
                                     sign[i] = self.sign_of(a, at(a, 0))?;
                                 }
-                                let lead = self.log_lead[i];
+                                let lead = self.log_lead[i].expect("a recurrence power");
                                 pow_node(c, scratch, sign[i], a, i, lead, k, k1, qv, signed)
                             }
                         }
@@ -489,15 +486,13 @@ pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
 
 /// Coefficient k of |w|^(q−1)w or |w|^q for w = node `a` in the sign region s: ũ = (s w)^q,
 /// ũ_0 = |w_0|^q; the node is s·ũ (signed) or ũ (absolute). For k ≥ 1:
-/// - alone on its operand (`lead` = None): the power recurrence [`pow_k`] on w itself (it is
-///   linear and homogeneous in w, so the sign s cancels), with k·w_k and k·ũ_k kept in
-///   `scratch.dw`, `scratch.ju`;
-/// - sharing its operand with other powers, and the operand's constant coefficient thin
-///   (relative width ≤ 10⁻⁶): node `lead` (the first of them) runs [`log_k`] for L = ln|w|
-///   (its k·L_k in `scratch.dw`), then each power ũ = exp(qL) runs [`exp_log_k`] (one sum per
-///   power instead of two); over wider boxes every power runs [`pow_k`].
+/// - the operand's constant coefficient thin (relative width ≤ 10⁻⁶, every jet of a point or
+///   of a proved step's box): node `lead` (the first power of w) runs [`log_k`] for
+///   L = ln|w| (its k·L_k in `scratch.dw`), then each power ũ = exp(qL) runs [`exp_log_k`];
+/// - over wider boxes (a range of v0) the power recurrence [`pow_k`] on w itself (it is linear
+///   and homogeneous in w, so the sign s cancels), which encloses tighter there.
 ///
-/// ũ itself is kept in `scratch.u` (for the recurrence and for a [`Op::Twin`]).
+/// ũ itself is kept in `scratch.u` (for the recurrences and for a [`Op::Twin`]).
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn pow_node<R: Real>(
@@ -506,53 +501,37 @@ fn pow_node<R: Real>(
     s: i8,
     a: usize,
     i: usize,
-    lead: Option<usize>,
+    lead: usize,
     k: usize,
     k1: usize,
     q: &R,
     signed: bool,
 ) -> R {
-    let (w, at) = (&c[a * k1..a * k1 + k + 1], i * k1);
-    // the shared log only where the operand is thin: over a wide box the two sums of [`pow_k`]
-    // (q entering once) enclose markedly tighter than the log's chained sums
-    if k == 0 && lead == Some(i) {
+    let (w, at, lt) = (&c[a * k1..a * k1 + k + 1], i * k1, lead * k1);
+    if k == 0 && lead == i {
         scratch.log_on[i] = w[0].hi() - w[0].lo() <= 1e-6 * w[0].lo().abs().min(w[0].hi().abs());
     }
-    let lead = lead.filter(|&l| scratch.log_on[l]);
     let u = if k == 0 {
         let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
         Real::apow(&w0, q)
-    } else if let Some(lead) = lead {
-        let lt = lead * k1;
+    } else if scratch.log_on[lead] {
         if i == lead {
             scratch.dw[lt + k] = log_k(w, &scratch.dw[lt..lt + k], k);
         }
         exp_log_k(&scratch.dw[lt..lt + k + 1], &scratch.u[at..at + k], q, k)
     } else {
-        scratch.dw[at + k] = w[k].mul_int(k as i64);
-        pow_k(
-            w,
-            &scratch.dw[at..at + k + 1],
-            &scratch.u[at..at + k],
-            &scratch.ju[at..at + k],
-            q,
-            k,
-        )
+        pow_k(w, &scratch.u[at..at + k], q, k)
     };
-    if lead.is_none() {
-        scratch.ju[at + k] = u.mul_int(k as i64);
-    }
     scratch.u[at + k] = u.clone();
     if signed && s < 0 { -u } else { u }
 }
 
-/// Per-node storage of the power recurrences: ũ_k, k·w_k (or k·L_k), k·ũ_k, and whether a
-/// shared log runs in this jet.
+/// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), and
+/// whether the log runs in this jet (decided by the lead at order 0).
 #[derive(Debug)]
 struct PowScratch<R> {
     u: Vec<R>,
     dw: Vec<R>,
-    ju: Vec<R>,
     log_on: Vec<bool>,
 }
 
@@ -571,7 +550,6 @@ impl<R> Default for Workspace<R> {
             scratch: PowScratch {
                 u: Vec::new(),
                 dw: Vec::new(),
-                ju: Vec::new(),
                 log_on: Vec::new(),
             },
             sign: Vec::new(),
@@ -587,7 +565,6 @@ impl<R: Real> Workspace<R> {
             self.scratch = PowScratch {
                 u: vec![R::zero(); n],
                 dw: vec![R::zero(); n],
-                ju: vec![R::zero(); n],
                 log_on: vec![false; nops],
             };
         }
