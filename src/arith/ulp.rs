@@ -182,7 +182,7 @@ impl Mul for Ulp {
     type Output = Self;
     /// The classic case table when both factors have a certain sign (two products), else
     /// [min, max] of the four endpoint products; each product rounded in its direction.
-    #[inline]
+    #[inline(always)]
     fn mul(self, o: Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
         let (lo, hi) = match (a >= 0.0, b <= 0.0, c >= 0.0, d <= 0.0) {
