@@ -16,17 +16,17 @@ pub const SPEEDS: [f64; 4] = [2.15, 3.03, 4.18, 5.02];
 /// One simulated loop and its numbers.
 pub struct Loop {
     pub v0: f64,
-    /// (|x| [mm], F [N]) samples from contact to separation.
+    /// (|x| \[mm\], F \[N\]) samples from contact to separation.
     pub points: Vec<(f64, f64)>,
-    /// T_s·T_c [s].
+    /// T_s·T_c \[s\].
     pub duration: f64,
     pub peak_force: f64,
-    /// max |x| [mm].
+    /// max |x| \[mm\].
     pub max_compression: f64,
-    /// |x| at separation [mm].
+    /// |x| at separation \[mm\].
     pub residual: f64,
     pub e: f64,
-    /// T_c [s], X_c [m].
+    /// T_c \[s\], X_c \[m\].
     pub t_c: f64,
     pub x_c: f64,
 }

@@ -20,7 +20,7 @@ fn label(s: &cor::Table1Set) -> String {
     format!("{}_{}", s.kind.name(), s.data)
 }
 
-/// Fig. 3: cor_float.csv, cor_rigorous.csv, fig3_<model>.{svg,png} (+ _rigorous).
+/// Fig. 3: cor_float.csv, cor_rigorous.csv, fig3_&lt;model&gt;.{svg,png} (+ _rigorous).
 pub fn write_cor(
     out: &Path,
     v0: &[f64],
@@ -140,7 +140,7 @@ fn speed_tag(v: f64) -> String {
     format!("{v:.2}").replace('.', "_")
 }
 
-/// Fig. 4: fig4_loop_<v0>.csv, table2_loops.csv, fig4_RCross.{svg,png}.
+/// Fig. 4: fig4_loop_&lt;v0&gt;.csv, table2_loops.csv, fig4_RCross.{svg,png}.
 pub fn write_loops(out: &Path, loops: &[Loop]) -> Result<Vec<String>, String> {
     let mut files = Vec::new();
     let mut summary = String::from(

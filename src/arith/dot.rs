@@ -48,7 +48,7 @@ const U: f64 = f64::EPSILON / 2.0;
 /// arithmetic on subnormals takes a microcode assist costing ~100 cycles.
 const FLOOR: f64 = 2.0 * f64::MIN_POSITIVE;
 
-/// Σ [aⱼ]·[bⱼ] for inari intervals, enclosed without switching the rounding mode.
+/// Σ \[aⱼ\]·\[bⱼ\] for inari intervals, enclosed without switching the rounding mode.
 ///
 /// For each term the four endpoint products are rounded to nearest and their minimum ℓ̃ⱼ and
 /// maximum h̃ⱼ kept. Rounding is monotone, so ℓ̃ⱼ = fl(ℓⱼ) for the exact lower end ℓⱼ = min of

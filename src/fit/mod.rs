@@ -8,7 +8,7 @@
 //! ```
 //!
 //! - [`data`]: the `v0,e` CSV reader with line-numbered errors;
-//! - [`cost`]: J and the model's CoR curve, the speeds evaluated in parallel (rayon);
+//! - [`cost`](mod@cost): J and the model's CoR curve, the speeds evaluated in parallel (rayon);
 //! - [`reparam`]: the smooth bijection ℝ⁶ → 𝓟 (or ℝ⁵ → 𝓟 ∩ {p = 1}) that lets an
 //!   unconstrained optimizer search inside the admissible set;
 //! - [`nelder_mead`]: the seeded multi-start Nelder–Mead minimization of J (argmin).

@@ -79,7 +79,7 @@ pub fn check_speed<R: Real>(v0: &R) -> Result<(), ParamError> {
 }
 
 /// Physical parameters of the BWSHCCM (eq:BWSHCCM) or the BWMCM (eq:BWMCM), SI units:
-/// m [kg], k [kg m^(1−p) s^−2], c [kg m^−p s^−1] (BWSHCCM) or [kg s^−1] (BWMCM), β, γ [m^−n].
+/// m \[kg\], k \[kg m^(1−p) s^−2\], c \[kg m^−p s^−1\] (BWSHCCM) or \[kg s^−1\] (BWMCM), β, γ \[m^−n\].
 #[derive(Clone, Debug)]
 pub struct PhysicalParams<R> {
     pub m: R,

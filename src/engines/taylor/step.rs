@@ -17,7 +17,7 @@
 //! while validation fails.
 //!
 //! **Low-order step** (across X_i = 0, at the start's branch point X = Z = 0, or where the
-//! Taylor step would be too short): an a-priori enclosure Y with X + [0,h]·f(Y) ⊆ Y
+//! Taylor step would be too short): an a-priori enclosure Y with X + \[0,h\]·f(Y) ⊆ Y
 //! (Picard–Lindelöf), then Φ(t0 + τ) ∈ X + τ·f(Y) for τ ∈ [0, h] — valid across any
 //! switching surface because f is only evaluated, never expanded.
 
@@ -384,7 +384,7 @@ pub fn jacobian_orders(order: usize) -> usize {
     (order.div_ceil(4) + 1).min(order).max(1)
 }
 
-/// A low-order step from (t0, X) of length h: validates Y ⊇ X + [0,h]·f(Y) and returns the
+/// A low-order step from (t0, X) of length h: validates Y ⊇ X + \[0,h\]·f(Y) and returns the
 /// piece X + τ f(Y). `None` when no a-priori box validates at this h.
 pub fn low_order_step<const N: usize>(
     tape: &Tape<Interval, N>,

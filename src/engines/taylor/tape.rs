@@ -359,7 +359,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
     }
 
     /// [`Tape::jet`] of the field continued across kinks: for each kink component i with
-    /// `side[i]` = ±1, |x_i| is expanded as side[i]·x_i whatever the sign of x_i in the box —
+    /// `side[i]` = ±1, |x_i| is expanded as side\[i\]·x_i whatever the sign of x_i in the box —
     /// the analytic continuation of the field from that side (|·| of a kink component is the
     /// only non-analytic operation on it, see [`Tape::kinks`]). 0 = no continuation.
     pub fn jet_on(
