@@ -185,26 +185,40 @@ impl Mul for Ulp {
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
-        let (lo, hi) = match (a >= 0.0, b <= 0.0, c >= 0.0, d <= 0.0) {
-            (true, _, true, _) => ((a, c), (b, d)),
-            (true, _, _, true) => ((b, c), (a, d)),
-            (_, true, true, _) => ((a, d), (b, c)),
-            (_, true, _, true) => ((b, d), (a, c)),
-            _ => {
-                return Self {
-                    lo: mul_dir(a, c, false)
-                        .min(mul_dir(a, d, false))
-                        .min(mul_dir(b, c, false).min(mul_dir(b, d, false))),
-                    hi: mul_dir(a, c, true)
-                        .max(mul_dir(a, d, true))
-                        .max(mul_dir(b, c, true).max(mul_dir(b, d, true))),
-                };
-            }
+        let pairs = match (a >= 0.0, b <= 0.0, c >= 0.0, d <= 0.0) {
+            (true, _, true, _) => Some(((a, c), (b, d))),
+            (true, _, _, true) => Some(((b, c), (a, d))),
+            (_, true, true, _) => Some(((a, d), (b, c))),
+            (_, true, _, true) => Some(((b, d), (a, c))),
+            _ => None,
         };
-        Self {
-            lo: mul_dir(lo.0, lo.1, false),
-            hi: mul_dir(hi.0, hi.1, true),
-        }
+        corners(self, o, pairs, mul_dir)
+    }
+}
+
+/// x ∘ y for the directed operation `op` (`op(u, v, up)`): from the endpoint pairs (lower,
+/// upper) that a case table picked, or else [min, max] over the four endpoint pairs.
+#[inline(always)]
+fn corners(
+    x: Ulp,
+    y: Ulp,
+    pairs: Option<((f64, f64), (f64, f64))>,
+    op: impl Fn(f64, f64, bool) -> f64,
+) -> Ulp {
+    let (a, b, c, d) = (x.lo, x.hi, y.lo, y.hi);
+    match pairs {
+        Some((lo, hi)) => Ulp {
+            lo: op(lo.0, lo.1, false),
+            hi: op(hi.0, hi.1, true),
+        },
+        None => Ulp {
+            lo: op(a, c, false)
+                .min(op(a, d, false))
+                .min(op(b, c, false).min(op(b, d, false))),
+            hi: op(a, c, true)
+                .max(op(a, d, true))
+                .max(op(b, c, true).max(op(b, d, true))),
+        },
     }
 }
 
@@ -239,26 +253,14 @@ impl Div for Ulp {
             return Self::ENTIRE;
         }
         // divisor of certain sign: the case table when the dividend has one too
-        let (lo, hi) = match (a >= 0.0, b <= 0.0, c > 0.0) {
-            (true, _, true) => ((a, d), (b, c)),
-            (true, _, false) => ((b, d), (a, c)),
-            (_, true, true) => ((a, c), (b, d)),
-            (_, true, false) => ((b, c), (a, d)),
-            _ => {
-                return Self {
-                    lo: div_dir(a, c, false)
-                        .min(div_dir(a, d, false))
-                        .min(div_dir(b, c, false).min(div_dir(b, d, false))),
-                    hi: div_dir(a, c, true)
-                        .max(div_dir(a, d, true))
-                        .max(div_dir(b, c, true).max(div_dir(b, d, true))),
-                };
-            }
+        let pairs = match (a >= 0.0, b <= 0.0, c > 0.0) {
+            (true, _, true) => Some(((a, d), (b, c))),
+            (true, _, false) => Some(((b, d), (a, c))),
+            (_, true, true) => Some(((a, c), (b, d))),
+            (_, true, false) => Some(((b, c), (a, d))),
+            _ => None,
         };
-        Self {
-            lo: div_dir(lo.0, lo.1, false),
-            hi: div_dir(hi.0, hi.1, true),
-        }
+        corners(self, o, pairs, div_dir)
     }
 }
 
