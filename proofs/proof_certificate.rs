@@ -10,6 +10,8 @@
 
 #[path = "certificate_core.rs"]
 mod certificate_core;
+#[path = "verdict.rs"]
+mod verdict;
 
 use std::process::ExitCode;
 
@@ -65,17 +67,8 @@ fn main() -> ExitCode {
                     }
                 }
             }
-            println!(
-                "{} entries checked in {:.2?}: {}",
-                entries.len(),
-                t0.elapsed(),
-                if ok { "VERIFIED" } else { "FAILED" }
-            );
-            if ok {
-                ExitCode::SUCCESS
-            } else {
-                ExitCode::FAILURE
-            }
+            let what = format!("{} entries checked in", entries.len());
+            verdict::finish(&what, t0, ok, "VERIFIED")
         }
         _ => {
             eprintln!("usage: proof-certificate write|check [FILE]");

@@ -6,6 +6,8 @@
 
 #[path = "equilibria_core.rs"]
 mod equilibria_core;
+#[path = "verdict.rs"]
+mod verdict;
 
 use std::process::ExitCode;
 
@@ -34,14 +36,5 @@ fn main() -> ExitCode {
             if good { "PROVED" } else { "FAILED" }
         );
     }
-    println!(
-        "total {:.2?}: {}",
-        t0.elapsed(),
-        if ok { "PROVED" } else { "FAILED" }
-    );
-    if ok {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    }
+    verdict::finish("total", t0, ok, "PROVED")
 }

@@ -11,6 +11,8 @@
 mod lyapunov_core;
 #[path = "sym.rs"]
 mod sym;
+#[path = "verdict.rs"]
+mod verdict;
 
 use lyapunov_core::{PBox, Which, classification_mismatches, gamma_counterexample, prove};
 use std::process::ExitCode;
@@ -109,14 +111,5 @@ fn main() -> ExitCode {
         );
         ok &= proved;
     }
-    println!(
-        "total {:.2?}: {}",
-        t0.elapsed(),
-        if ok { "PROVED" } else { "FAILED" }
-    );
-    if ok {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    }
+    verdict::finish("total", t0, ok, "PROVED")
 }
