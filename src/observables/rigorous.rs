@@ -139,6 +139,15 @@ mod tests {
         )
     }
 
+    /// The NDBWMCM of Table 1's DSA set at v0 = 5 m/s.
+    fn maxwell_dsa_v0_5() -> Maxwell<Interval> {
+        let base =
+            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
+                .unwrap();
+        let v0: Interval = "[5]".parse().unwrap();
+        Maxwell::new(crate::models::scaling::nd_from_base(ModelKind::Maxwell, &base, &v0).unwrap())
+    }
+
     #[test]
     fn dss_shc_enclosure_contains_the_float_value() {
         let (mi, mf) = shc("1.43,-1.42,0.632,0.00715,1.31,1.27");
@@ -168,13 +177,8 @@ mod tests {
 
     #[test]
     fn maxwell_dsa_at_v0_5() {
-        let base =
-            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
-                .unwrap();
-        let v0: Interval = "[5]".parse().unwrap();
-        let p = crate::models::scaling::nd_from_base(ModelKind::Maxwell, &base, &v0).unwrap();
         let t0 = std::time::Instant::now();
-        let r = rigorous_impact(&Maxwell::new(p), &TaylorOptions::default());
+        let r = rigorous_impact(&maxwell_dsa_v0_5(), &TaylorOptions::default());
         match &r {
             Ok(enc) => eprintln!(
                 "ts {:?} e {:?} width {:e} pieces {} in {:?}",
@@ -222,13 +226,7 @@ mod tests {
             opts.order,
             t * 1e3
         );
-        let base =
-            NdParams::<Interval>::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14")
-                .unwrap();
-        let v0: Interval = "[5]".parse().unwrap();
-        let m = Maxwell::new(
-            crate::models::scaling::nd_from_base(ModelKind::Maxwell, &base, &v0).unwrap(),
-        );
+        let m = maxwell_dsa_v0_5();
         let (t, (w, n)) = median(&|| {
             let r = rigorous_impact(&m, &opts).unwrap();
             (r.e.wid(), r.flow.len())
