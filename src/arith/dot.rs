@@ -18,6 +18,16 @@ pub trait Dot<R>: Sized {
     fn new() -> Self;
     /// Adds a·b.
     fn add_prod(&mut self, a: &R, b: &R);
+    /// Adds f·a·b for a constant f of the type (a factor of a recurrence, such as the power
+    /// recurrence's q(k − j) − j). Accumulators of interval types override it to take the
+    /// three-way product in one pass (no directed rounding of f·a).
+    #[inline]
+    fn add_prod3(&mut self, f: &R, a: &R, b: &R)
+    where
+        R: super::Real,
+    {
+        self.add_prod(&a.mul_constant(f), b);
+    }
     /// The sum (for an interval type: an enclosure of the exact sum of the exact products).
     fn sum(self) -> R;
 }
@@ -34,6 +44,10 @@ impl Dot<f64> for F64Dot {
     #[inline]
     fn add_prod(&mut self, a: &f64, b: &f64) {
         self.0 += a * b;
+    }
+    #[inline]
+    fn add_prod3(&mut self, f: &f64, a: &f64, b: &f64) {
+        self.0 += f * a * b;
     }
     #[inline]
     fn sum(self) -> f64 {
@@ -62,8 +76,20 @@ const FLOOR: f64 = 2.0 * f64::MIN_POSITIVE;
 /// ```
 ///
 /// since (γ_{n−1} + u)/(1 − γ_{n−1}) ≤ nu/(1 − 2nu) ≤ (n + 1)u whenever n(n + 1) ≤ 2^52. The
-/// final subtraction is rounded outwards by one ulp at each operation (`next_down`/`next_up`).
-/// The upper end is symmetric. A non-finite sum (an unbounded or empty argument, an overflow)
+/// rounding of the final correction S − (n + 1)uA − 2^−1021 is covered by a larger constant
+/// ((n + 4)u, see `ends`): one fused multiply-add and one subtraction per end, rounded to
+/// nearest. The upper end is symmetric.
+///
+/// **Three-way terms** [f]·[a]·[b] ([`Dot::add_prod3`], |f| ≤ 2^20) take the four endpoint
+/// products of [a]·[b] rounded to nearest, their minimum p̃₀ and maximum p̃₁ (= fl of the exact
+/// ends P₀, P₁, by monotonicity), then the four products fl(f_x·p̃_e) and their minimum t̃ (and
+/// maximum). The exact lower end is a corner f_x·P_e, and with c = fl(f_x·p̃_e),
+/// |f_x·P_e − c| ≤ |f_x|·(u|p̃_e| + 2^−1075) + u|c| + 2^−1075 ≤ (2u + u²)|c| + (2 + F)·2^−1075
+/// (F = max|f_x|). Since c ↦ c − (2u + u²)|c| is increasing, the exact lower end is
+/// ≥ t̃ − (2u + u²)|t̃| − (2 + F)·2^−1075. Such a term is counted twice in n: with N terms of
+/// which m ≥ 1 are three-way, (γ_{N−1} + 2u + u²)/(1 − γ_{N−1}) ≤ (N + 2)u ≤ (N + m + 1)u for
+/// N ≤ 2^24, and the underflow terms stay below 2^−1021 for F ≤ 2^20. A larger |f| takes the
+/// two-product route (a·f enclosed first). A non-finite sum (an unbounded or empty argument, an overflow)
 /// gives [−∞, +∞], which encloses everything; a product 0·∞ inside an endpoint product is
 /// ignored by min/max, as the set-based product [0, 0]·[1, ∞] = {0} requires.
 #[derive(Clone, Copy, Debug)]
@@ -74,6 +100,10 @@ pub struct IntervalDot {
     abs_hi: f64,
     n: u32,
 }
+
+/// The largest |f| of a three-way term taken in one pass (see [`IntervalDot`]); a NaN end
+/// fails the test and takes the two-product route.
+const F_MAX: f64 = (1u64 << 20) as f64;
 
 /// The most terms one accumulator takes: n(n + 1) ≤ 2^52 with a wide margin.
 const MAX_TERMS: u32 = 1 << 24;
@@ -101,6 +131,21 @@ impl IntervalDot {
         self.abs_hi += hi.abs();
         self.n += 1;
     }
+    /// Adds [f0, f1]·[a0, a1]·[b0, b1] (|f| ≤ 2^20: see the type's documentation).
+    #[inline]
+    fn add_ends3(&mut self, f0: f64, f1: f64, a0: f64, a1: f64, b0: f64, b1: f64) {
+        let (p, q, r, s) = (a0 * b0, a0 * b1, a1 * b0, a1 * b1);
+        let plo = p.min(q).min(r.min(s));
+        let phi = p.max(q).max(r.max(s));
+        let (p, q, r, s) = (f0 * plo, f0 * phi, f1 * plo, f1 * phi);
+        let lo = p.min(q).min(r.min(s));
+        let hi = p.max(q).max(r.max(s));
+        self.lo += lo;
+        self.hi += hi;
+        self.abs_lo += lo.abs();
+        self.abs_hi += hi.abs();
+        self.n += 2;
+    }
     /// The enclosure (lo, hi) of the sum; (−∞, +∞) when not finite.
     #[inline(always)]
     fn ends(self) -> (f64, f64) {
@@ -111,18 +156,14 @@ impl IntervalDot {
         if !finite || self.n > MAX_TERMS {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
-        // (n + 1)·u is exact; c·A is rounded up by a step (c·A ≥ 2^−1021·u·A is normal
-        // unless A is tiny), then FLOOR added and rounded up again
-        let c = (self.n as f64 + 1.0) * U;
-        let err = |a: f64| {
-            if a == 0.0 {
-                FLOOR
-            } else {
-                ((c * a).next_up() + FLOOR).next_up()
-            }
-        };
-        let lo = (self.lo - err(self.abs_lo)).next_down();
-        let hi = (self.hi + err(self.abs_hi)).next_up();
+        // one fused step per end, no directed rounding: E = fl(c·A + 2^−1020) with
+        // c = (n + 4)u (exact) and lo = fl(S − E). RN gives E ≥ (cA + 2^−1020)(1 − u) (normal)
+        // and lo ≤ (S − E) + u(|S| + E) (exact when subnormal); with |S| ≤ 2A this is
+        // ≤ S − (n + 1)uA − 2^−1021 as soon as (n + 4)(1 − 2u) ≥ n + 3, true for n ≤ 2^24.
+        // The upper end is symmetric.
+        let c = (self.n as f64 + 4.0) * U;
+        let lo = self.lo - c.mul_add(self.abs_lo, 2.0 * FLOOR);
+        let hi = self.hi + c.mul_add(self.abs_hi, 2.0 * FLOOR);
         (lo, hi)
     }
 }
@@ -137,9 +178,28 @@ impl Dot<Interval> for IntervalDot {
         self.add_ends(a.inf(), a.sup(), b.inf(), b.sup());
     }
     #[inline]
+    fn add_prod3(&mut self, f: &Interval, a: &Interval, b: &Interval) {
+        if f.mag() <= F_MAX {
+            self.add_ends3(f.inf(), f.sup(), a.inf(), a.sup(), b.inf(), b.sup());
+        } else {
+            self.add_prod(&(*a * *f), b);
+        }
+    }
+    #[inline]
     fn sum(self) -> Interval {
         Interval::try_from(self.ends()).unwrap_or(Interval::ENTIRE)
     }
+}
+
+/// Σ aⱼ·bⱼ over inari intervals by one [`IntervalDot`] (the small matrix–vector products of a
+/// step: Jacobians, Lohner's B = J·A, offsets A·r). A constant term c enters as (c, 1).
+#[inline]
+pub fn interval_dot(terms: impl IntoIterator<Item = (Interval, Interval)>) -> Interval {
+    let mut d = IntervalDot::empty();
+    for (a, b) in terms {
+        d.add_ends(a.inf(), a.sup(), b.inf(), b.sup());
+    }
+    d.sum()
 }
 
 /// The same accumulator over [`Ulp`] intervals (endpoints read directly).
@@ -154,6 +214,14 @@ impl Dot<Ulp> for UlpDot {
     #[inline]
     fn add_prod(&mut self, a: &Ulp, b: &Ulp) {
         self.0.add_ends(a.lo, a.hi, b.lo, b.hi);
+    }
+    #[inline]
+    fn add_prod3(&mut self, f: &Ulp, a: &Ulp, b: &Ulp) {
+        if f.lo.abs().max(f.hi.abs()) <= F_MAX {
+            self.0.add_ends3(f.lo, f.hi, a.lo, a.hi, b.lo, b.hi);
+        } else {
+            self.add_prod(&(*a * *f), b);
+        }
     }
     #[inline]
     fn sum(self) -> Ulp {
@@ -276,6 +344,116 @@ mod tests {
                     assert!(encloses(r, &e), "{terms:?} → {r:?}");
                 }
             }
+        }
+    }
+
+    /// The exact Σ [fⱼ]·[aⱼ]·[bⱼ] (finite endpoints), as rationals: min and max over the eight
+    /// endpoint products of each term.
+    fn exact3(terms: &[(Interval, Interval, Interval)]) -> (Rational, Rational) {
+        let mut lo = Rational::new();
+        let mut hi = Rational::new();
+        let ends = |x: &Interval| {
+            [
+                Rational::from_f64(x.inf()).unwrap(),
+                Rational::from_f64(x.sup()).unwrap(),
+            ]
+        };
+        for (f, a, b) in terms {
+            let mut ps: Vec<Rational> = Vec::new();
+            for x in ends(f) {
+                for y in ends(a) {
+                    for z in ends(b) {
+                        ps.push(Rational::from(&x * &y) * &z);
+                    }
+                }
+            }
+            lo += ps.iter().min().unwrap();
+            hi += ps.iter().max().unwrap();
+        }
+        (lo, hi)
+    }
+
+    #[test]
+    fn three_way_terms_enclose_the_exact_sum() {
+        // factors like the power recurrence's q(k − j) − j (thin, either sign, up to 2^20) and
+        // beyond 2^20 (the two-product route), mixed with two-way terms in one accumulator;
+        // Interval and Ulp accumulators give the same endpoints
+        let mut g = Gen(0x2545f4914f6cdd1d);
+        for binades in [2, 30, 300, 1000] {
+            for n in [1, 2, 5, 21] {
+                for _ in 0..200 {
+                    let terms: Vec<(Interval, Interval, Interval)> = (0..n)
+                        .map(|i| {
+                            let f = if i % 3 == 2 {
+                                g.interval(binades)
+                            } else {
+                                let m = (g.next() % (1 << 21)) as f64 - (1 << 20) as f64;
+                                let x = m + 0.3;
+                                iv(x, x.next_up())
+                            };
+                            (f, g.interval(binades), g.interval(binades))
+                        })
+                        .collect();
+                    let mut d = IntervalDot::new();
+                    let mut du = UlpDot::new();
+                    let mut pairs = Vec::new();
+                    for (j, (f, a, b)) in terms.iter().enumerate() {
+                        if j % 4 == 3 {
+                            // a two-way term in the same sum: [f]·[a] enclosed first (inari)
+                            d.add_prod(&(*f * *a), b);
+                            du.add_prod(&Ulp::of(*f * *a), &Ulp::of(*b));
+                            pairs.push((*f * *a, *b));
+                        } else {
+                            d.add_prod3(f, a, b);
+                            du.add_prod3(&Ulp::of(*f), &Ulp::of(*a), &Ulp::of(*b));
+                        }
+                    }
+                    let r = d.sum();
+                    assert_eq!(r, du.sum().interval());
+                    if pairs.iter().any(|(x, _)| !x.is_common_interval()) {
+                        // f·a overflowed: the sum is [−∞, +∞], which encloses everything
+                        assert!(r.is_entire(), "{terms:?} → {r:?}");
+                        continue;
+                    }
+                    let triples: Vec<_> = terms
+                        .iter()
+                        .enumerate()
+                        .filter(|(j, _)| j % 4 != 3)
+                        .map(|(_, t)| *t)
+                        .collect();
+                    let (l3, h3) = exact3(&triples);
+                    let (l2, h2) = exact(&pairs);
+                    let e = (l3 + l2, h3 + h2);
+                    assert!(encloses(r, &e), "{terms:?} → {r:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn three_way_terms_are_tight_on_thin_data() {
+        // the width is that of the rounding errors: ≤ (2n + 1)·u·Σ|terms| (n = 21)
+        let mut g = Gen(777);
+        for _ in 0..200 {
+            let terms: Vec<(Interval, Interval, Interval)> = (0..21)
+                .map(|j| {
+                    let (a, b) = (g.float(3), g.float(3));
+                    let f = 1.27 * (21 - j) as f64 - j as f64;
+                    (iv(f, f), iv(a, a), iv(b, b))
+                })
+                .collect();
+            let mut d = IntervalDot::new();
+            for (f, a, b) in &terms {
+                d.add_prod3(f, a, b);
+            }
+            let r = d.sum();
+            let scale: f64 = terms
+                .iter()
+                .map(|(f, a, b)| (f.sup() * a.sup() * b.sup()).abs())
+                .sum();
+            assert!(r.wid() <= 2.0 * 44.0 * f64::EPSILON * scale, "{r:?}");
+            let (lo, hi) = exact3(&terms);
+            assert!(encloses(r, &(lo, hi)), "{r:?}");
         }
     }
 

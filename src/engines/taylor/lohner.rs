@@ -18,6 +18,7 @@
 //! arithmetic and e = ‖E‖_∞ < 1, Q⁻¹ = (I − E)⁻¹R and every entry of Q⁻¹ − R is bounded by
 //! ‖(I − E)⁻¹ − I‖_∞‖R‖_∞ ≤ e/(1 − e)·‖R‖_∞ (Neumann series).
 
+use crate::arith::dot::interval_dot;
 use inari::{Interval, const_interval};
 
 const ZERO: Interval = const_interval!(0.0, 0.0);
@@ -50,23 +51,16 @@ impl<const N: usize> Parallelepiped<N> {
     /// The interval hull of c + A·r.
     pub fn hull(&self) -> [Interval; N] {
         std::array::from_fn(|i| {
-            let mut acc = pt(self.c[i]);
-            for j in 0..N {
-                acc += pt(self.a[i][j]) * self.r[j];
-            }
-            acc
+            interval_dot(
+                std::iter::once((pt(self.c[i]), ONE))
+                    .chain((0..N).map(|j| (pt(self.a[i][j]), self.r[j]))),
+            )
         })
     }
 
     /// A·r, the set's offsets from c.
     pub fn offsets(&self) -> [Interval; N] {
-        std::array::from_fn(|i| {
-            let mut acc = ZERO;
-            for j in 0..N {
-                acc += pt(self.a[i][j]) * self.r[j];
-            }
-            acc
-        })
+        std::array::from_fn(|i| interval_dot((0..N).map(|j| (pt(self.a[i][j]), self.r[j]))))
     }
 
     /// The set z + B·r of the next step, re-represented with A′ = Q (see the module doc).
@@ -76,17 +70,16 @@ impl<const N: usize> Parallelepiped<N> {
         let bm: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| b[i][j].mid()));
         let q = orthonormal_basis(&bm, r)?;
         let qinv = inverse_enclosure(&q)?;
+        // Q⁻¹B, then r′ = (Q⁻¹B)·r + Q⁻¹(z − c′)
+        let qb: [[Interval; N]; N] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| interval_dot((0..N).map(|l| (qinv[i][l], b[l][j]))))
+        });
         let r1 = std::array::from_fn(|i| {
-            let mut acc = ZERO;
-            for j in 0..N {
-                acc += qinv[i][j] * (z[j] - pt(c[j]));
-                let mut qb = ZERO;
-                for l in 0..N {
-                    qb += qinv[i][l] * b[l][j];
-                }
-                acc += qb * r[j];
-            }
-            acc
+            interval_dot(
+                (0..N)
+                    .map(|j| (qinv[i][j], z[j] - pt(c[j])))
+                    .chain((0..N).map(|j| (qb[i][j], r[j]))),
+            )
         });
         Some(Self { c, a: q, r: r1 })
     }
@@ -130,10 +123,7 @@ pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval
         let mut row = ZERO;
         let mut rrow = ZERO;
         for j in 0..N {
-            let mut rq = ZERO;
-            for l in 0..N {
-                rq += pt(r[i][l]) * pt(q[l][j]);
-            }
+            let rq = interval_dot((0..N).map(|l| (pt(r[i][l]), pt(q[l][j]))));
             let e = if i == j { ONE - rq } else { -rq };
             row += pt(e.mag());
             rrow += pt(r[i][j].abs());

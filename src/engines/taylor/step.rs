@@ -25,6 +25,7 @@ use super::flow::{Piece, point};
 use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
 use super::tape::{Tape, Workspace};
+use crate::arith::dot::interval_dot;
 use crate::arith::dual::Dual;
 use crate::arith::ulp::Ulp;
 use inari::Interval;
@@ -173,6 +174,7 @@ pub fn taylor_step<const N: usize>(
     let x = &std::array::from_fn(|i| x[i].convex_hull(xm[i]));
     let ar = rep.offsets();
     let kd = jacobian_orders(k);
+    let one = Interval::try_from((1.0, 1.0)).unwrap();
     // the midpoint's coefficients are only needed where the mean-value form is used (k < kd)
     let jm = jet_iv(&tapes.plain, &xm, kd - 1, &mut ws.point, side)
         .map_err(|_| TaylorFail::AtSurface)?;
@@ -246,36 +248,33 @@ pub fn taylor_step<const N: usize>(
                 }
                 let tau1 = super::flow::tau(point(t1), t0);
                 // J = Σ τ^k D_k at τ = t1 − t0, applied to X − x̂
-                let mut jac = [[Interval::try_from((0.0, 0.0)).unwrap(); N]; N];
+                let mut pw = Vec::with_capacity(dk.len());
                 let mut p = Interval::try_from((1.0, 1.0)).unwrap();
-                for d in &dk {
-                    for i in 0..N {
-                        for j in 0..N {
-                            jac[i][j] += p * d[i][j];
-                        }
-                    }
+                for _ in 0..dk.len() {
+                    pw.push(p);
                     p *= tau1;
                 }
+                let jac: [[Interval; N]; N] = std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        interval_dot(dk.iter().zip(&pw).map(|(d, p)| (*p, d[i][j])))
+                    })
+                });
                 let base = taylor_eval(&cm, &rem, tau1);
                 // B = J·A; x(t1) ∈ base + B·r, kept as a parallelepiped (QR) and as a box
                 let b: [[Interval; N]; N] = std::array::from_fn(|i| {
                     std::array::from_fn(|j| {
-                        let mut acc = Interval::try_from((0.0, 0.0)).unwrap();
-                        for l in 0..N {
-                            acc += jac[i][l] * point(rep.a[l][j]);
-                        }
-                        acc
+                        interval_dot((0..N).map(|l| (jac[i][l], point(rep.a[l][j]))))
                     })
                 });
                 let next = Parallelepiped::advance(&base, &b, &rep.r);
+                let next_hull = next.as_ref().map(|p| p.hull());
                 let x1: [Interval; N] = std::array::from_fn(|i| {
-                    let mut acc = base[i];
-                    for j in 0..N {
-                        acc += b[i][j] * rep.r[j];
-                    }
+                    let acc = interval_dot(
+                        std::iter::once((base[i], one)).chain((0..N).map(|j| (b[i][j], rep.r[j]))),
+                    );
                     let acc = acc.intersection(ynew[i]);
-                    match &next {
-                        Some(p) => acc.intersection(p.hull()[i]),
+                    match &next_hull {
+                        Some(h) => acc.intersection(h[i]),
                         None => acc,
                     }
                 });
@@ -285,11 +284,10 @@ pub fn taylor_step<const N: usize>(
                     .enumerate()
                     .map(|(kk, c)| match dk.get(kk) {
                         Some(d) => std::array::from_fn(|i| {
-                            let mut acc = c[i];
-                            for j in 0..N {
-                                acc += d[i][j] * ar[j];
-                            }
-                            acc
+                            interval_dot(
+                                std::iter::once((c[i], one))
+                                    .chain((0..N).map(|j| (d[i][j], ar[j]))),
+                            )
                         }),
                         None => *c,
                     })

@@ -13,7 +13,7 @@
 //! constant coefficient does not have a certain sign has no expansion, and the jet fails with
 //! [`JetError::Branch`] naming the component — the caller then takes a low-order step across.
 
-use crate::arith::series::{div_k, exp_log_k, log_k, mul_k, pow_k};
+use crate::arith::series::{div_k, exp_log_k, log_k, mul_k, pow_factors, pow_k};
 use crate::arith::{Real, Scalar};
 use std::cell::RefCell;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -511,6 +511,9 @@ fn pow_node<R: Real>(
     if k == 0 && lead == i {
         scratch.log_on[i] = w[0].hi() - w[0].lo() <= 1e-6 * w[0].lo().abs().min(w[0].hi().abs());
     }
+    if k == 0 && !scratch.log_on[lead] {
+        scratch.factors(i, q, k1 - 1);
+    }
     let u = if k == 0 {
         let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
         Real::apow(&w0, q)
@@ -520,19 +523,51 @@ fn pow_node<R: Real>(
         }
         exp_log_k(&scratch.dw[lt..lt + k + 1], &scratch.u[at..at + k], q, k)
     } else {
-        pow_k(w, &scratch.u[at..at + k], q, k)
+        let row = k * (k - 1) / 2;
+        pow_k(
+            w,
+            &scratch.u[at..at + k],
+            &scratch.fac[i].1[row..row + k],
+            k,
+        )
     };
     scratch.u[at + k] = u.clone();
     if signed && s < 0 { -u } else { u }
 }
 
-/// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), and
-/// whether the log runs in this jet (decided by the lead at order 0).
+/// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), whether
+/// the log runs in this jet (decided by the lead at order 0), and the factors q(k − j) − j of
+/// [`pow_k`] (rows k = 1..K, row k at k(k − 1)/2), kept with the exponent's ends they were
+/// computed for.
 #[derive(Debug)]
 struct PowScratch<R> {
     u: Vec<R>,
     dw: Vec<R>,
     log_on: Vec<bool>,
+    fac: Vec<((f64, f64), Vec<R>)>,
+}
+
+impl<R: Real> PowScratch<R> {
+    fn new(n: usize, nops: usize) -> Self {
+        Self {
+            u: vec![R::zero(); n],
+            dw: vec![R::zero(); n],
+            log_on: vec![false; nops],
+            fac: (0..nops)
+                .map(|_| ((f64::NAN, f64::NAN), Vec::new()))
+                .collect(),
+        }
+    }
+
+    /// Makes `fac[i]` the factor table of the exponent q up to order `order`.
+    fn factors(&mut self, i: usize, q: &R, order: usize) {
+        let len = order * (order + 1) / 2;
+        let (key, table) = &mut self.fac[i];
+        if *key != (q.lo(), q.hi()) || table.len() < len {
+            *key = (q.lo(), q.hi());
+            *table = (1..=order).flat_map(|k| pow_factors(q, k)).collect();
+        }
+    }
 }
 
 /// Reusable storage for [`Tape::jet`].
@@ -551,6 +586,7 @@ impl<R> Default for Workspace<R> {
                 u: Vec::new(),
                 dw: Vec::new(),
                 log_on: Vec::new(),
+                fac: Vec::new(),
             },
             sign: Vec::new(),
         }
@@ -562,17 +598,13 @@ impl<R: Real> Workspace<R> {
         let n = nops * k1;
         if self.c.len() != n {
             self.c = vec![R::zero(); n];
-            self.scratch = PowScratch {
-                u: vec![R::zero(); n],
-                dw: vec![R::zero(); n],
-                log_on: vec![false; nops],
-            };
+            self.scratch = PowScratch::new(n, nops);
         }
         if self.sign.len() != nops {
             self.sign = vec![1; nops];
         }
         if self.scratch.log_on.len() != nops {
-            self.scratch.log_on = vec![false; nops];
+            self.scratch = PowScratch::new(n, nops);
         }
     }
 }
