@@ -48,6 +48,17 @@ fn median(v: &[f64]) -> f64 {
     }
 }
 
+/// A rayon pool of one thread: the rigorous engine's step halves then run one after the other.
+fn one_thread() -> &'static rayon::ThreadPool {
+    static POOL: std::sync::OnceLock<rayon::ThreadPool> = std::sync::OnceLock::new();
+    POOL.get_or_init(|| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a one-thread pool")
+    })
+}
+
 /// Seconds per call of `f`, timed over a batch of `n` calls.
 fn per_call(n: usize, mut f: impl FnMut()) -> f64 {
     let t0 = Instant::now();
@@ -350,6 +361,8 @@ struct Row1 {
     nfev: usize,
     e_f: f64,
     t_r: f64,
+    /// The rigorous time with rayon's global pool (the step's two halves on two threads).
+    t_r2: f64,
     e_r: Result<Interval, String>,
 }
 
@@ -357,7 +370,7 @@ fn float_vs_rigorous<Mf, Mi, const N: usize>(
     ctx: &Ctx,
     mf: &Mf,
     mi: &Mi,
-) -> (f64, usize, f64, f64, Result<Interval, String>)
+) -> (f64, usize, f64, f64, f64, Result<Interval, String>)
 where
     Mf: CollisionModel<f64, N>,
     Mi: CollisionModel<Interval, N>,
@@ -374,12 +387,18 @@ where
     let nb_f = batch_for(t_f1, 0.02);
     let nb_r = batch_for(t_r1, 0.02);
     let reps = ctx.reps(11);
-    let (mut tf, mut tr) = (Vec::new(), Vec::new());
+    let one = one_thread();
+    let (mut tf, mut tr, mut tr2) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..reps {
         tf.push(per_call(nb_f, || {
             black_box(impact(black_box(mf), &fo).unwrap().e);
         }));
-        tr.push(per_call(nb_r, || {
+        tr.push(one.install(|| {
+            per_call(nb_r, || {
+                let _ = black_box(rigorous_impact(black_box(mi), &to).map(|e| e.e));
+            })
+        }));
+        tr2.push(per_call(nb_r, || {
             let _ = black_box(rigorous_impact(black_box(mi), &to).map(|e| e.e));
         }));
     }
@@ -388,6 +407,7 @@ where
         r.stats.nfev,
         r.e,
         median(&tr),
+        median(&tr2),
         enc.map(|e| e.e).map_err(|e| format!("{e:?}")),
     )
 }
@@ -395,22 +415,27 @@ where
 fn section1(ctx: &mut Ctx) -> Vec<Row1> {
     ctx.line("## 1. Interval vs float (Table 1 sets)");
     ctx.line("");
+    let order = TaylorOptions::default().order;
     ctx.line(format!(
         "f64: `impact` with `FloatOptions::default()` (DOP853 rtol {RTOL:e}, atol {ATOL:e}, \
          max_step {MAX_STEP:e}, event location). Rigorous: `rigorous_impact` with \
-         `TaylorOptions::default()` (order 20, tol 1e-15), v0 a point interval. Times are \
-         medians of {} interleaved repetitions, each a batch of ≈20 ms, single thread. \
+         `TaylorOptions::default()` (order {order}, tol 1e-15), v0 a point interval. Times are \
+         medians of {} interleaved repetitions, each a batch of ≈20 ms. f64 and \"rigorous\" \
+         run on one thread (the rigorous engine in a one-thread rayon pool); \"rigorous, 2 \
+         threads\" is the same call with the global pool, where each Taylor step's two \
+         independent halves run as a `rayon::join` (identical enclosures; on this shared \
+         machine the second core is not always free). The ratio is the one-thread one. \
          load at start: {}",
         ctx.reps(11),
         loadavg()
     ));
     ctx.line("");
-    ctx.line("| case | v0 | f64 time | nfev | rigorous time | e enclosure width | ratio rig/f64 | f64 e − mid(e) | f64 e inside |");
-    ctx.line("|---|---:|---:|---:|---:|---:|---:|---:|:-:|");
+    ctx.line("| case | v0 | f64 time | nfev | rigorous time | rigorous, 2 threads | e enclosure width | ratio rig/f64 | f64 e − mid(e) | f64 e inside |");
+    ctx.line("|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|");
     let mut rows = Vec::new();
     for (name, kind, base) in CASES {
         for v0 in SPEEDS {
-            let (t_f, nfev, e_f, t_r, e_r) = match kind {
+            let (t_f, nfev, e_f, t_r, t_r2, e_r) = match kind {
                 ModelKind::Shc => float_vs_rigorous(
                     ctx,
                     &Shc::new(nd_f64(kind, base, v0)),
@@ -435,9 +460,10 @@ fn section1(ctx: &mut Ctx) -> Vec<Row1> {
                 ),
             };
             ctx.line(format!(
-                "| {name} | {v0} | {} | {nfev} | {} | {w} | {:.0}× | {d} | {inside} |",
+                "| {name} | {v0} | {} | {nfev} | {} | {} | {w} | {:.0}× | {d} | {inside} |",
                 fmt_t(t_f),
                 fmt_t(t_r),
+                fmt_t(t_r2),
                 t_r / t_f
             ));
             rows.push(Row1 {
@@ -447,6 +473,7 @@ fn section1(ctx: &mut Ctx) -> Vec<Row1> {
                 nfev,
                 e_f,
                 t_r,
+                t_r2,
                 e_r,
             });
         }
@@ -479,9 +506,12 @@ where
             let r = rigorous_impact(mi, &to);
             let mut ts = Vec::new();
             for _ in 0..reps {
-                let t0 = Instant::now();
-                let _ = black_box(rigorous_impact(black_box(mi), &to).map(|e| e.e));
-                ts.push(t0.elapsed().as_secs_f64());
+                // one thread, as the rigorous column of section 1
+                ts.push(one_thread().install(|| {
+                    let t0 = Instant::now();
+                    let _ = black_box(rigorous_impact(black_box(mi), &to).map(|e| e.e));
+                    t0.elapsed().as_secs_f64()
+                }));
             }
             let t = median(&ts);
             match r {
@@ -645,7 +675,7 @@ fn section1b(ctx: &mut Ctx) {
     ctx.line("## 1b. Work–precision of the rigorous engine");
     ctx.line("");
     ctx.line(format!(
-        "e enclosure width against time over Taylor order × tol; time = median of {} runs. \
+        "e enclosure width against time over Taylor order × tol; time = median of {} runs, one thread. \
          load: {}",
         ctx.reps(5),
         loadavg()
@@ -710,11 +740,12 @@ where
         }));
     }
     let med: Vec<f64> = ts.iter().map(|v| median(v)).collect();
+    let order = TaylorOptions::default().order;
     ctx.line(format!("### {title}"));
     ctx.line("");
     match &enc {
         Some(e) => ctx.line(format!(
-            "rigorous (order 20, tol 1e-15): T_s ∈ [{:.15}, {:.15}], e ∈ [{:.16}, {:.16}] \
+            "rigorous (order {order}, tol 1e-15): T_s ∈ [{:.15}, {:.15}], e ∈ [{:.16}, {:.16}] \
              (width {:.1e})\n",
             e.ts.inf(),
             e.ts.sup(),
@@ -1137,6 +1168,20 @@ fn summary(ctx: &mut Ctx, rows: &[Row1]) {
             rows.iter().map(|r| r.nfev as f64).sum::<f64>() / rows.len() as f64
         ));
     }
+    let t1: Vec<f64> = rows.iter().map(|r| r.t_r).collect();
+    let t2: Vec<f64> = rows.iter().map(|r| r.t_r2).collect();
+    let widest = rows
+        .iter()
+        .filter_map(|r| r.e_r.as_ref().ok().map(|e| e.wid()))
+        .fold(0.0, f64::max);
+    ctx.line("");
+    ctx.line(format!(
+        "Rigorous CoR over the {} cases: median {} on one thread, {} with the step halves on two \
+         threads (target ≤ 20 ms); widest e enclosure {widest:.2e}.",
+        rows.len(),
+        fmt_t(median(&t1)),
+        fmt_t(median(&t2)),
+    ));
 }
 
 fn init_font() -> Result<(), String> {
