@@ -514,7 +514,7 @@ mod tests {
         ];
         for i in 0..20_000 {
             let mut pick = |j: u64| {
-                if (i + j) % 5 == 0 {
+                if (i + j).is_multiple_of(5) {
                     special[(g.next() % special.len() as u64) as usize]
                 } else {
                     g.float(300)
