@@ -17,6 +17,9 @@ use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
 use criterion::{Criterion, criterion_group, criterion_main};
+
+#[path = "../paper_repro/font.rs"]
+mod font;
 use inari::Interval;
 
 /// (bench id, model, base set P* = B_b,Γ_b,κ,σ_b,n,p) of Table 1.
@@ -125,5 +128,21 @@ fn rigorous_cor(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, float_cor, rigorous_cor);
+/// Criterion with its HTML report's plots when a font can be registered (plotters is built
+/// with `ab_glyph` here, so text needs a registered TrueType font), without them otherwise.
+fn config() -> Criterion {
+    match font::init_font() {
+        Ok(_) => Criterion::default(),
+        Err(e) => {
+            eprintln!("criterion plots off: {e}");
+            Criterion::default().without_plots()
+        }
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = float_cor, rigorous_cor
+}
 criterion_main!(benches);

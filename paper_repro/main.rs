@@ -10,6 +10,7 @@
 
 mod cor;
 mod demo;
+mod font;
 mod loops;
 mod plot;
 mod report;
@@ -168,7 +169,7 @@ fn run(args: Args) -> Result<(), String> {
         .clone()
         .unwrap_or_else(|| PathBuf::from(ROOT).join("paper_repro/REPORT.md"));
     std::fs::create_dir_all(&out).map_err(|e| format!("creating '{}': {e}", out.display()))?;
-    let font = plot::init_font()?;
+    let font = font::init_font()?;
     let t_all = std::time::Instant::now();
 
     // Fig. 3

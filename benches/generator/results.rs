@@ -26,8 +26,12 @@ use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
 use rayon::prelude::*;
 
+#[path = "../../paper_repro/font.rs"]
+mod font;
+
 const CASES: [(&str, ModelKind, &str); 4] = bwcl::models::params::TABLE1;
-const SPEEDS: [f64; 3] = [0.1, 1.0, 5.0];
+/// The speeds of issue #3's acceptance set (section 1); SciPy's script runs 0.1, 1 and 5 of them.
+const SPEEDS: [f64; 7] = [0.1, 0.5, 1.0, 2.0, 3.0, 4.0, 5.0];
 const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;
 const MAX_STEP: f64 = 1e-2;
@@ -1088,7 +1092,7 @@ fn main() {
         quick,
         md: String::new(),
     };
-    if let Err(e) = init_font() {
+    if let Err(e) = font::init_font() {
         eprintln!("font: {e}");
     }
     let t_all = Instant::now();
@@ -1182,18 +1186,4 @@ fn summary(ctx: &mut Ctx, rows: &[Row1]) {
         fmt_t(median(&t1)),
         fmt_t(median(&t2)),
     ));
-}
-
-fn init_font() -> Result<(), String> {
-    let path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-    let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
-    let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-    for style in [
-        plotters::style::FontStyle::Normal,
-        plotters::style::FontStyle::Bold,
-    ] {
-        plotters::style::register_font("sans-serif", style, bytes)
-            .map_err(|_| "bad font".to_string())?;
-    }
-    Ok(())
 }

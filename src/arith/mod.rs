@@ -5,12 +5,14 @@
 //! - [`interval`]: inari `Interval` as a `Real`, exact enclosure of decimal input;
 //! - [`series`]: truncated Taylor series over any `Real`;
 //! - [`dual`]: forward-mode dual numbers (gradients, Jacobians);
+//! - [`fastpow`]: x^q for the f64 engine by tables per exponent (low latency);
 //! - [`dot`]: accumulators of sums of products (the recurrences' inner loop);
 //! - [`ulp`]: interval operations by outward ulp steps (no rounding-mode switches).
 
 pub mod dot;
 pub mod dual;
 pub mod elementary;
+pub mod fastpow;
 pub mod interval;
 pub mod real;
 pub mod scalar;

@@ -114,16 +114,11 @@ pub trait Real:
     }
 }
 
-/// x^q for x > 0 as exp(q·ln x): within a few ulps (relative error ≲ (|q ln x| + 2)·2^−53),
-/// about half the cost of the correctly rounded `powf`. Only the f64 engine uses it; interval
-/// powers are inari's enclosures.
+/// x^q for x ≥ 0 on the f64 engine: tables per exponent ([`super::fastpow`], a few ulps).
+/// Interval powers are enclosures ([`super::elementary`]).
 #[inline]
 fn fast_pow(x: f64, q: f64) -> f64 {
-    if x == 0.0 {
-        0.0_f64.powf(q)
-    } else {
-        (q * x.ln()).exp()
-    }
+    super::fastpow::pow(x, q)
 }
 
 impl Real for f64 {
