@@ -93,7 +93,7 @@ impl<R: Real> CollisionModel<R, 4> for Maxwell<R> {
     }
 
     /// f(R, Y, Z, W) of eq:BWMCM_nd.
-    #[inline]
+    #[inline(always)]
     fn field<T: Scalar<R>>(&self, s: &[T; 4]) -> [T; 4] {
         let [_, y, z, w] = s;
         let ((ys, yb), (zs, zb)) = (self.powers(y), self.powers(z));

@@ -54,7 +54,7 @@ impl<R: Real> CollisionModel<R, 3> for Shc<R> {
     }
 
     /// f(X, Z, V) of eq:BWSHCCM_nd.
-    #[inline]
+    #[inline(always)]
     fn field<T: Scalar<R>>(&self, s: &[T; 3]) -> [T; 3] {
         let [_, z, v] = s;
         [v.clone(), self.law.hysteretic_rate(z, v), self.force(s)]

@@ -110,6 +110,7 @@ pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
         return Err(ImpactError::BadHorizon(opts.horizon));
     }
     let mut solver = Dop853::new(
+        #[inline(always)]
         |_t, y: &[f64; N]| model.field(y),
         0.0,
         model.initial_state(),

@@ -37,7 +37,9 @@ const SAFETY: f64 = 0.9;
 const MIN_FACTOR: f64 = 0.2;
 /// Largest allowed step-size ratio `h_new/h` (SciPy `MAX_FACTOR`).
 const MAX_FACTOR: f64 = 10.0;
-/// Controller exponent `−1/(q + 1)` with `q = 7`, the order of the error estimator.
+/// Controller exponent `−1/(q + 1)` with `q = 7`, the order of the error estimator
+/// (`err^(−1/8)` by [`crate::arith::fastpow`], a few ulps: the libm `powf` was 7% of a CoR's
+/// instructions; the step sequences of the SciPy reference tests are unchanged).
 const ERROR_EXPONENT: f64 = -1.0 / 8.0;
 /// Order `q` of the error estimator, used by [`select_initial_step`].
 const ERROR_ESTIMATOR_ORDER: f64 = 7.0;
@@ -458,7 +460,7 @@ where
                 let mut factor = if err == 0.0 {
                     MAX_FACTOR
                 } else {
-                    MAX_FACTOR.min(SAFETY * err.powf(ERROR_EXPONENT))
+                    MAX_FACTOR.min(SAFETY * crate::arith::fastpow::pow(err, ERROR_EXPONENT))
                 };
                 if rejected {
                     factor = factor.min(1.0);
@@ -478,7 +480,7 @@ where
             let factor = if non_finite {
                 MIN_FACTOR
             } else {
-                MIN_FACTOR.max(SAFETY * err.powf(ERROR_EXPONENT))
+                MIN_FACTOR.max(SAFETY * crate::arith::fastpow::pow(err, ERROR_EXPONENT))
             };
             h_abs *= factor;
             rejected = true;
