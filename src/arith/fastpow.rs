@@ -3,9 +3,10 @@
 //! Every power in the models is |w|^q for a state component w and a fixed parameter q (n − 1,
 //! p − 1, …), and the f64 DOP853 engine spends most of a CoR waiting for them: each stage's
 //! argument depends on the previous stage's powers, so what counts is the latency of one
-//! power. exp(q·ln x) chains two library calls (≈ 40 ns per right-hand side on this project's
-//! machine, `benches/RESULTS.md`); with tables built once per q the chain is a few integer
-//! operations, three loads and a degree-7 polynomial.
+//! power. exp(q·ln x) chains two library calls (≈ 40 ns per SHC right-hand side on this
+//! project's machine in a dependent-chain microbenchmark, ≈ 30 ns with these tables); with
+//! tables built once per q the chain is a few integer operations, three loads and a degree-7
+//! polynomial.
 //!
 //! With x = 2^k·m, m ∈ [√½, √2), the subinterval i of m (the top [`LOG_BITS`] bits of its
 //! mantissa offset), a short reciprocal cᵢ⁻¹ of its centre and r = m·cᵢ⁻¹ − 1 (one FMA,
