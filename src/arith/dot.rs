@@ -80,8 +80,8 @@ const FLOOR: f64 = 2.0 * f64::MIN_POSITIVE;
 /// ((n + 4)u, see `ends`): one fused multiply-add and one subtraction per end, rounded to
 /// nearest. The upper end is symmetric.
 ///
-/// **Three-way terms** [f]·[a]·[b] ([`Dot::add_prod3`], |f| ≤ 2^20) take the four endpoint
-/// products of [a]·[b] rounded to nearest, their minimum p̃₀ and maximum p̃₁ (= fl of the exact
+/// **Three-way terms** \[f\]·\[a\]·\[b\] ([`Dot::add_prod3`], |f| ≤ 2^20) take the four endpoint
+/// products of \[a\]·\[b\] rounded to nearest, their minimum p̃₀ and maximum p̃₁ (= fl of the exact
 /// ends P₀, P₁, by monotonicity), then the four products fl(f_x·p̃_e) and their minimum t̃ (and
 /// maximum). The exact lower end is a corner f_x·P_e, and with c = fl(f_x·p̃_e),
 /// |f_x·P_e − c| ≤ |f_x|·(u|p̃_e| + 2^−1075) + u|c| + 2^−1075 ≤ (2u + u²)|c| + (2 + F)·2^−1075

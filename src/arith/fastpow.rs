@@ -24,9 +24,9 @@
 //! [2^−64.5, 2^63.5): 0, subnormals, ∞, NaN; or q outside the range) the value is the
 //! library `powf`.
 //!
-//! The tables are built on an exponent's first use (≈ 6 µs) and kept (see [`SLOTS`]).
-//! Only the f64 engine uses this: interval powers are
-//! enclosures ([`super::elementary`]).
+//! The tables are built on an exponent's first use (≈ 6 µs) and kept (a global set of
+//! `SLOTS` places, then a per-thread cache). Only the f64 engine uses this: interval powers
+//! are enclosures ([`super::elementary`]).
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicPtr, Ordering};
@@ -137,7 +137,7 @@ fn places(key: u64) -> [usize; 2] {
 }
 
 /// x^q for x ≥ 0 (see the module doc for the method and its accuracy). Inlined: the first
-/// place is tried here, everything else ([`pow_elsewhere`]) out of line.
+/// place is tried here, everything else (`pow_elsewhere`) out of line.
 #[inline(always)]
 pub fn pow(x: f64, q: f64) -> f64 {
     let key = q.to_bits();
