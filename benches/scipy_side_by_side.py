@@ -7,20 +7,25 @@ eq:BWMCM_nd with the output V = R' + W of eq:BWMCM_nd_output), parameters
 P(P*, v0) = (B_b v0^(2n/(p+1)), Gamma_b v0^(2n/(p+1)), kappa, sigma_b v0^s, n, p) with
 s = 1 (SHC) or (p-1)/(p+1) (Maxwell). Separation T_s = inf{T >= 0 : F <= 0 and V >= 0} is a
 terminal event on g = max(F, -V) crossing zero downward (g(0) = max(0, 1) = 1; the event
-ignores T = 0 anyway); e = V(T_s). t_scipy is the median of 5 runs of one solve_ivp call.
+ignores T = 0 anyway); e = V(T_s).
 
 bwcl: `bwcl cor --model M --base P* --v0 v,v,...,v --format json` with REPEAT copies of the
-speed in one call; t_bwcl per CoR = (median wall time of 3 such calls) / REPEAT. It INCLUDES
-the process start-up and JSON output amortized over REPEAT CoRs (nothing is subtracted). By
+speed in one call; its time per CoR is the call's wall time / REPEAT. It INCLUDES the
+process start-up and JSON output amortized over REPEAT CoRs (nothing is subtracted). By
 default RAYON_NUM_THREADS=1 (single-threaded, like SciPy); pass --threads N to change it.
 The binary is $BWCL_BIN, else target/release/bwcl at the repo root (built with
 `cargo build --release` if missing).
 
-The ratio column is t_scipy / t_bwcl per case (t_bwcl as above, i.e. with process start-up);
-`cargo run --release --example results` (benches/results.rs) runs this script with --json and
-adds the in-process bwcl time and the like-for-like ratio next to it.
+Timing: the machine's speed drifts (a shared VM: the same solve_ivp call takes 28 to 70 ms
+within one run), so the two sides are timed in ROUNDS interleaved rounds per case, each one
+SciPy solve_ivp call right beside one bwcl call, and each round gives its own ratio
+t_scipy / t_bwcl. The columns are the medians over the rounds: t_scipy, t_bwcl, and the
+ratio (the median of the per-round ratios, so that a slow spell of the machine slows both
+sides of the ratios it enters). `cargo run --release --example results`
+(benches/generator/results.rs) runs this script with --json and adds an in-process bwcl time
+next to it.
 
-Usage: python3 benches/scipy_side_by_side.py [--repeat 200] [--threads 1] [--no-bwcl]
+Usage: python3 benches/scipy_side_by_side.py [--repeat 400] [--threads 1] [--no-bwcl]
        [--json OUT.json]
 """
 
@@ -42,7 +47,7 @@ CASES = [
 ]
 SPEEDS = [0.1, 1.0, 5.0]
 RTOL, ATOL, MAX_STEP, HORIZON = 1e-10, 1e-12, 1e-2, 100.0
-SCIPY_RUNS, BWCL_RUNS = 5, 3
+ROUNDS = 7
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -112,7 +117,9 @@ def maxwell_model(P):
     return rhs, force, velocity, [0.0, 0.0, 0.0, -1.0]
 
 
-def scipy_cor(model, base, v0, solve_ivp):
+def scipy_case(model, base, v0, solve_ivp):
+    """(run, result): run() times one solve_ivp call and keeps its solution; result() gives
+    (ts, e, nfev/steps, error) of the last solution."""
     P = nd_params(model, base, v0)
     rhs, force, velocity, y0 = (shc_model if model == "shc" else maxwell_model)(P)
 
@@ -123,27 +130,26 @@ def scipy_cor(model, base, v0, solve_ivp):
 
     g.terminal = True
     g.direction = -1
+    last = {}
 
     def run():
-        return solve_ivp(
+        t0 = time.perf_counter()
+        last["sol"] = solve_ivp(
             rhs, (0.0, HORIZON), y0, method="DOP853", rtol=RTOL, atol=ATOL,
             max_step=MAX_STEP, events=g,
         )
+        return time.perf_counter() - t0
 
-    times, sol = [], None
-    for _ in range(SCIPY_RUNS):
-        t0 = time.perf_counter()
-        sol = run()
-        times.append(time.perf_counter() - t0)
-    if not sol.success:
-        return None, None, sol.nfev, statistics.median(times), sol.message
-    # nfev, accepted steps
-    nf = f"{sol.nfev}/{len(sol.t) - 1}"
-    if sol.t_events[0].size == 0:
-        return math.inf, 0.0, nf, statistics.median(times), None
-    ts = sol.t_events[0][0]
-    e = velocity(sol.y_events[0][0])
-    return ts, e, nf, statistics.median(times), None
+    def result():
+        sol = last["sol"]
+        if not sol.success:
+            return None, None, sol.nfev, sol.message
+        nf = f"{sol.nfev}/{len(sol.t) - 1}"  # nfev, accepted steps
+        if sol.t_events[0].size == 0:
+            return math.inf, 0.0, nf, None
+        return sol.t_events[0][0], velocity(sol.y_events[0][0]), nf, None
+
+    return run, result
 
 
 def find_bwcl():
@@ -160,35 +166,42 @@ def find_bwcl():
     return b if r.returncode == 0 and os.path.isfile(b) else None
 
 
-def bwcl_cor(binary, model, base, v0, repeat, threads):
-    """(e, nfev, seconds per CoR, error) from `bwcl cor`, REPEAT copies of v0 in one call."""
+def bwcl_case(binary, model, base, v0, repeat, threads):
+    """(run, result) as for SciPy: run() times one `bwcl cor` call of REPEAT CoRs and returns
+    the seconds per CoR (None if it failed); result() gives (e, nfev/steps, error)."""
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
     speeds = ",".join([repr(v0)] * repeat)
     cmd = [binary, "cor", "--model", model, "--base", base, "--v0", speeds, "--format", "json"]
-    times, out = [], None
-    for _ in range(BWCL_RUNS):
+    last = {}
+
+    def run():
         t0 = time.perf_counter()
         r = subprocess.run(cmd, capture_output=True, text=True, env=env)
-        times.append(time.perf_counter() - t0)
+        dt = time.perf_counter() - t0
+        last["r"] = r
+        return dt / repeat if r.returncode == 0 else None
+
+    def result():
+        r = last["r"]
         if r.returncode != 0:
-            return None, None, None, (r.stderr.strip() or f"exit {r.returncode}")[:200]
-        out = r.stdout
-    try:
-        rows = json.loads(out)
-        if isinstance(rows, dict):
-            rows = rows.get("rows") or rows.get("results") or [rows]
-        row = rows[0]
-    except (ValueError, IndexError, KeyError, TypeError) as err:
-        return None, None, None, f"unparsable JSON: {err}"
-    if len(rows) != repeat:
-        return None, None, None, f"expected {repeat} rows, got {len(rows)}"
-    if row.get("error"):
-        return None, row.get("nfev"), None, row["error"]
-    e = row.get("e")
-    nf = row.get("nfev")
-    if nf is not None and row.get("steps") is not None:
-        nf = f"{nf}/{row['steps']}"
-    return e, nf, statistics.median(times) / repeat, None
+            return None, None, (r.stderr.strip() or f"exit {r.returncode}")[:200]
+        try:
+            rows = json.loads(r.stdout)
+            if isinstance(rows, dict):
+                rows = rows.get("rows") or rows.get("results") or [rows]
+            row = rows[0]
+        except (ValueError, IndexError, KeyError, TypeError) as err:
+            return None, None, f"unparsable JSON: {err}"
+        if len(rows) != repeat:
+            return None, None, f"expected {repeat} rows, got {len(rows)}"
+        if row.get("error"):
+            return None, row.get("nfev"), row["error"]
+        nf = row.get("nfev")
+        if nf is not None and row.get("steps") is not None:
+            nf = f"{nf}/{row['steps']}"
+        return row.get("e"), nf, None
+
+    return run, result
 
 
 def fmt(x, spec, unit=""):
@@ -197,7 +210,7 @@ def fmt(x, spec, unit=""):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--repeat", type=int, default=200, help="copies of v0 per bwcl call")
+    ap.add_argument("--repeat", type=int, default=400, help="copies of v0 per bwcl call")
     ap.add_argument("--threads", type=int, default=1, help="RAYON_NUM_THREADS for bwcl")
     ap.add_argument("--no-bwcl", action="store_true", help="SciPy side only")
     ap.add_argument("--json", metavar="PATH", help="also write the rows as JSON to PATH")
@@ -215,43 +228,68 @@ def main():
         print("bwcl binary not available (set BWCL_BIN or build it): SciPy side only",
               file=sys.stderr)
     print(f"SciPy {scipy.__version__}, Python {sys.version.split()[0]}; DOP853 rtol={RTOL} "
-          f"atol={ATOL} max_step={MAX_STEP}; t_scipy = median of {SCIPY_RUNS} runs")
+          f"atol={ATOL} max_step={MAX_STEP}")
     if binary:
-        print(f"bwcl = {binary}; t_bwcl = median of {BWCL_RUNS} calls / {args.repeat} CoRs per "
-              f"call (includes process start-up amortized), RAYON_NUM_THREADS={args.threads}")
+        print(f"bwcl = {binary}; one call = {args.repeat} CoRs (process start-up included), "
+              f"RAYON_NUM_THREADS={args.threads}")
+    print(f"per case: 1 warm-up round, then {ROUNDS} rounds of one SciPy call beside one bwcl "
+          f"call; medians over the rounds, ratio = median of the per-round ratios "
+          f"(min..max after it)")
     head = (f"{'case':<12} {'v0':>4} {'e_scipy':>20} {'e_bwcl':>20} {'|diff|':>9} "
-            f"{'nfev/st_sp':>11} {'nfev/st_bw':>11} {'t_scipy/CoR':>12} {'t_bwcl/CoR':>12} {'ratio':>8}")
+            f"{'nfev/st_sp':>11} {'nfev/st_bw':>11} {'t_scipy/CoR':>12} {'t_bwcl/CoR':>12} "
+            f"{'ratio':>6} {'(range)':>11}")
     print(head)
     print("-" * len(head))
     notes = []
     rows = []
     for name, model, base in CASES:
         for v0 in SPEEDS:
-            ts, e_s, nfev_s, t_s, err_s = scipy_cor(model, base, v0, solve_ivp)
+            run_s, result_s = scipy_case(model, base, v0, solve_ivp)
+            run_b = result_b = None
+            if binary:
+                run_b, result_b = bwcl_case(binary, model, base, v0, args.repeat, args.threads)
+            times_s, times_b, ratios_case = [], [], []
+            for rnd in range(ROUNDS + 1):
+                t_s = run_s()
+                t_b = run_b() if run_b else None
+                if rnd == 0:
+                    continue  # warm-up
+                times_s.append(t_s)
+                if t_b:
+                    times_b.append(t_b)
+                    ratios_case.append(t_s / t_b)
+            ts, e_s, nfev_s, err_s = result_s()
             if err_s:
                 notes.append(f"{name} v0={v0}: SciPy failed: {err_s}")
-            e_b = nfev_b = t_b = None
-            if binary:
-                e_b, nfev_b, t_b, err_b = bwcl_cor(binary, model, base, v0, args.repeat,
-                                                  args.threads)
+            e_b = nfev_b = None
+            if result_b:
+                e_b, nfev_b, err_b = result_b()
                 if err_b:
                     notes.append(f"{name} v0={v0}: bwcl: {err_b}")
+            t_s = statistics.median(times_s)
+            t_b = statistics.median(times_b) if times_b else None
+            ratio = statistics.median(ratios_case) if ratios_case else None
+            spread = (f"{min(ratios_case):.0f}..{max(ratios_case):.0f}" if ratios_case
+                      else "-")
             diff = abs(e_s - e_b) if (e_s is not None and e_b is not None) else None
-            ratio = t_s / t_b if (t_s and t_b) else None
             print(f"{name:<12} {v0:>4g} {fmt(e_s, '.15f'):>20} {fmt(e_b, '.15f'):>20} "
                   f"{fmt(diff, '.2e'):>9} {fmt(nfev_s, ''):>11} {fmt(nfev_b, ''):>11} "
-                  f"{fmt(t_s * 1e3 if t_s else None, '.3f', ' ms'):>12} "
+                  f"{fmt(t_s * 1e3, '.3f', ' ms'):>12} "
                   f"{fmt(t_b * 1e6 if t_b else None, '.1f', ' us'):>12} "
-                  f"{fmt(ratio, '.0f'):>8}")
+                  f"{fmt(ratio, '.0f'):>6} {spread:>11}")
             sys.stdout.flush()
             rows.append({"case": name, "v0": v0,
                          "ts_scipy": ts if ts is None or math.isfinite(ts) else None, "e_scipy": e_s,
                          "nfev_scipy": nfev_s, "t_scipy": t_s, "e_bwcl": e_b,
-                         "nfev_bwcl": nfev_b, "t_bwcl": t_b, "ratio": ratio})
+                         "nfev_bwcl": nfev_b, "t_bwcl": t_b, "ratio": ratio,
+                         "ratios": ratios_case})
     ratios = sorted(r["ratio"] for r in rows if r["ratio"])
     if ratios:
-        print(f"ratio t_scipy/t_bwcl (CLI): min {ratios[0]:.0f}, "
-              f"median {statistics.median(ratios):.0f}, max {ratios[-1]:.0f}")
+        every = sorted(x for r in rows for x in r["ratios"])
+        print(f"ratio t_scipy/t_bwcl (CLI), per case: min {ratios[0]:.0f}, "
+              f"median {statistics.median(ratios):.0f}, max {ratios[-1]:.0f}; "
+              f"all {len(every)} rounds: median {statistics.median(every):.0f}, "
+              f"{sum(x >= 300 for x in every)} of {len(every)} at 300 or more")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, default=lambda x: None if x is None else str(x))

@@ -124,6 +124,8 @@ impl Neg for PSym {
 
 impl Real for PSym {
     type Dot = bwcl::arith::dot::PlainDot<PSym>;
+    type Prepared = ();
+    fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {
         Self {
             iv: <Interval as Real>::from_int(k),

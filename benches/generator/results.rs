@@ -888,17 +888,21 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
         return;
     };
     ctx.line(
-        "Columns: t_scipy = median of 5 `solve_ivp(method=\"DOP853\", events=g)` calls (Python \
-         RHS, in-process, no interpreter start). t_bwcl in-process = median of 7 batches (≈20 ms each) of one `impact` call, in-process, \
-         single thread, re-timed right after the script (the SciPy runs are in a subprocess, \
-         so this column is not interleaved with them; compare section 1 for its spread). t_bwcl CLI = median wall \
-         time of `bwcl cor` with REPEAT copies of v0 / REPEAT (includes process start-up, \
-         argument parsing and JSON output, amortized; RAYON_NUM_THREADS=1).",
+        "Columns: the script times each case in 7 rounds (after a warm-up round), each one \
+         `solve_ivp(method=\"DOP853\", events=g)` call (Python RHS, in-process, no interpreter \
+         start) right beside one `bwcl cor` call with REPEAT copies of v0 (wall time / REPEAT: \
+         process start-up, argument parsing and JSON output included, amortized; \
+         RAYON_NUM_THREADS=1). t_scipy and t_bwcl CLI are the medians over the rounds; ratio \
+         (CLI) is the median of the 7 per-round ratios, so that a slow spell of the machine \
+         slows both sides of the ratios it enters. t_bwcl in-process = median of 7 batches \
+         (≈20 ms each) of one `impact` call, single thread, re-timed here right after the \
+         script (not interleaved with it; compare section 1 for its spread).",
     );
     ctx.line("");
     ctx.line("| case | v0 | t_scipy | t_bwcl in-process | ratio (in-process) | t_bwcl CLI | ratio (CLI) | |e_scipy − e_bwcl| |");
     ctx.line("|---|---:|---:|---:|---:|---:|---:|---:|");
     let mut ratios = Vec::new();
+    let (mut cli, mut rounds) = (Vec::new(), Vec::new());
     for r in v.as_array().into_iter().flatten() {
         let case = r["case"].as_str().unwrap_or("?");
         let v0 = r["v0"].as_f64().unwrap_or(f64::NAN);
@@ -916,14 +920,31 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
             _ => "-".into(),
         };
         ratios.push(ts / ti);
+        let rc = r["ratio"].as_f64().unwrap_or(f64::NAN);
+        cli.push(rc);
+        rounds.extend(r["ratios"].as_array().into_iter().flatten().filter_map(|x| x.as_f64()));
         ctx.line(format!(
             "| {case} | {v0} | {} | {} | {:.0}× | {} | {:.0}× | {de} |",
             fmt_t(ts),
             fmt_t(ti),
             ts / ti,
             fmt_t(tc),
-            ts / tc
+            rc
         ));
+    }
+    for (what, r) in [("CLI, per case", &mut cli), ("CLI, every round", &mut rounds)] {
+        r.retain(|x| x.is_finite());
+        r.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        if !r.is_empty() {
+            ctx.line(format!(
+                "\nSciPy / bwcl ({what}): min {:.0}×, median {:.0}×, max {:.0}×; {} of {} at 300× or more",
+                r[0],
+                median(r),
+                r[r.len() - 1],
+                r.iter().filter(|&&x| x >= 300.0).count(),
+                r.len()
+            ));
+        }
     }
     if !ratios.is_empty() {
         let mut r = ratios.clone();

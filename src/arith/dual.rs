@@ -181,6 +181,8 @@ impl<R: Real, const M: usize> Dot<Dual<R, M>> for DualDot<R, M> {
 
 impl<R: Real, const M: usize> Real for Dual<R, M> {
     type Dot = DualDot<R, M>;
+    type Prepared = ();
+    fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {
         Self::constant(R::from_int(k))
     }

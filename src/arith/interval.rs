@@ -124,6 +124,8 @@ fn int_op(x: Interval, k: i64, div: bool) -> Interval {
 
 impl Real for Interval {
     type Dot = super::dot::IntervalDot;
+    type Prepared = ();
+    fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {
         let x = k as f64;
         assert!(x as i64 == k, "integer constant {k} is not exact in f64");

@@ -4,6 +4,8 @@
 //! Taylor coefficient. Every operation of an interval implementation must enclose the exact
 //! real result for every point of its arguments; the `f64` implementation rounds to nearest.
 
+use super::exponent::Exponent;
+use super::fastpow::Power;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -79,6 +81,26 @@ pub trait Real:
     fn spow_base(&self, q: &Self) -> (Self, Self) {
         (self.spow(q), self.apow(&(q.clone() - Self::one())))
     }
+    /// What an [`Exponent`] precomputes for q: the `f64` engine's power tables, `()` for
+    /// types whose powers need nothing.
+    type Prepared: Clone + Debug + Send + Sync;
+    fn prepare_exponent(q: &Self) -> Self::Prepared;
+    /// `spow` with a prepared exponent. The default is `spow(q.value())`; `f64` reads its
+    /// tables (a few ulps from `spow`, see [`super::fastpow`]).
+    #[inline]
+    fn spow_prepared(&self, q: &Exponent<Self>) -> Self {
+        self.spow(q.value())
+    }
+    /// `spow_apow` with a prepared exponent (default: `spow_apow(q.value())`).
+    #[inline]
+    fn spow_apow_prepared(&self, q: &Exponent<Self>) -> (Self, Self) {
+        self.spow_apow(q.value())
+    }
+    /// `spow_base` with a prepared exponent (default: `spow_base(q.value())`).
+    #[inline]
+    fn spow_base_prepared(&self, q: &Exponent<Self>) -> (Self, Self) {
+        self.spow_base(q.value())
+    }
     /// Lower bound of the value (the value itself for `f64`).
     fn lo(&self) -> f64;
     /// Upper bound of the value (the value itself for `f64`).
@@ -114,15 +136,35 @@ pub trait Real:
     }
 }
 
-/// x^q for x ≥ 0 on the f64 engine: tables per exponent ([`super::fastpow`], a few ulps).
-/// Interval powers are enclosures ([`super::elementary`]).
-#[inline]
-fn fast_pow(x: f64, q: f64) -> f64 {
-    super::fastpow::pow(x, q)
+/// A prepared exponent q of the `f64` engine: |x|^(q−1) exactly for q = 1 and q = 2,
+/// otherwise by q − 1's tables ([`super::fastpow`], a few ulps).
+#[derive(Clone, Debug)]
+pub enum F64Exponent {
+    One,
+    Two,
+    Tables(Power),
 }
 
+impl F64Exponent {
+    fn new(q: f64) -> Self {
+        if q == 1.0 {
+            F64Exponent::One
+        } else if q == 2.0 {
+            F64Exponent::Two
+        } else {
+            F64Exponent::Tables(Power::new(q - 1.0))
+        }
+    }
+}
+
+/// The `f64` powers: with a prepared exponent (the models' right-hand sides) by tables; the
+/// others (Lyapunov functions, tests, one-off values) by the library `powf`.
 impl Real for f64 {
     type Dot = super::dot::F64Dot;
+    type Prepared = F64Exponent;
+    fn prepare_exponent(q: &f64) -> F64Exponent {
+        F64Exponent::new(*q)
+    }
     #[inline]
     fn from_int(k: i64) -> Self {
         k as f64
@@ -166,7 +208,7 @@ impl Real for f64 {
         } else if *self == 0.0 {
             0.0
         } else {
-            fast_pow(self.abs(), q - 1.0) * self
+            self.abs().powf(q - 1.0) * self
         }
     }
     #[inline]
@@ -176,7 +218,7 @@ impl Real for f64 {
         } else if *q == 2.0 {
             self * self
         } else {
-            fast_pow(self.abs(), *q)
+            self.abs().powf(*q)
         }
     }
     /// One power: a = |x|^(q−1), then (a·x, a·|x|).
@@ -189,7 +231,7 @@ impl Real for f64 {
         } else if *self == 0.0 {
             (0.0, 0.0)
         } else {
-            let a = fast_pow(self.abs(), q - 1.0);
+            let a = self.abs().powf(q - 1.0);
             (a * self, a * self.abs())
         }
     }
@@ -201,8 +243,58 @@ impl Real for f64 {
         } else if *self == 0.0 {
             (0.0, if *q == 1.0 { 1.0 } else { 0.0 })
         } else {
-            let a = fast_pow(self.abs(), q - 1.0);
+            let a = self.abs().powf(q - 1.0);
             (a * self, a)
+        }
+    }
+    #[inline(always)]
+    fn spow_prepared(&self, q: &Exponent<f64>) -> f64 {
+        match q.prepared() {
+            F64Exponent::One => *self,
+            F64Exponent::Two => self.abs() * self,
+            F64Exponent::Tables(t) => {
+                if *self == 0.0 {
+                    0.0
+                } else {
+                    t.pow(self.abs()) * self
+                }
+            }
+        }
+    }
+    /// One power: a = |x|^(q−1), then (a·x, |a·x|).
+    #[inline(always)]
+    fn spow_apow_prepared(&self, q: &Exponent<f64>) -> (f64, f64) {
+        match q.prepared() {
+            F64Exponent::One => (*self, self.abs()),
+            F64Exponent::Two => {
+                let s = self.abs() * self;
+                (s, s.abs())
+            }
+            F64Exponent::Tables(t) => {
+                if *self == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    // a ≥ 0: a·|x| = |a·x|, one multiplication fewer
+                    let s = t.pow(self.abs()) * self;
+                    (s, s.abs())
+                }
+            }
+        }
+    }
+    /// One power: a = |x|^(q−1), then (a·x, a).
+    #[inline(always)]
+    fn spow_base_prepared(&self, q: &Exponent<f64>) -> (f64, f64) {
+        match q.prepared() {
+            F64Exponent::One => (*self, 1.0),
+            F64Exponent::Two => (self.abs() * self, self.abs()),
+            F64Exponent::Tables(t) => {
+                if *self == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    let a = t.pow(self.abs());
+                    (a * self, a)
+                }
+            }
         }
     }
     #[inline]

@@ -5,6 +5,7 @@
 //! Taylor series of it, dual numbers, and the recording type of the rigorous engine's tape.
 //! Each model is written once, generic over `T: Scalar<R>`.
 
+use super::exponent::Exponent;
 use super::real::Real;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -37,6 +38,19 @@ pub trait Scalar<R: Real>:
     fn spow_base(&self, q: &R) -> (Self, Self) {
         (self.spow(q), self.apow(&(q.clone() - R::one())))
     }
+    /// `spow` with a prepared [`Exponent`] (the models' right-hand sides): the value of
+    /// `spow(q.value())`, except for `f64`, which reads q's tables (a few ulps).
+    fn spow_prepared(&self, q: &Exponent<R>) -> Self {
+        self.spow(q.value())
+    }
+    /// `spow_apow` with a prepared [`Exponent`] (as [`Scalar::spow_prepared`]).
+    fn spow_apow_prepared(&self, q: &Exponent<R>) -> (Self, Self) {
+        self.spow_apow(q.value())
+    }
+    /// `spow_base` with a prepared [`Exponent`] (as [`Scalar::spow_prepared`]).
+    fn spow_base_prepared(&self, q: &Exponent<R>) -> (Self, Self) {
+        self.spow_base(q.value())
+    }
 }
 
 impl<R: Real> Scalar<R> for R {
@@ -67,5 +81,17 @@ impl<R: Real> Scalar<R> for R {
     #[inline]
     fn spow_base(&self, q: &R) -> (Self, Self) {
         Real::spow_base(self, q)
+    }
+    #[inline(always)]
+    fn spow_prepared(&self, q: &Exponent<R>) -> Self {
+        Real::spow_prepared(self, q)
+    }
+    #[inline(always)]
+    fn spow_apow_prepared(&self, q: &Exponent<R>) -> (Self, Self) {
+        Real::spow_apow_prepared(self, q)
+    }
+    #[inline(always)]
+    fn spow_base_prepared(&self, q: &Exponent<R>) -> (Self, Self) {
+        Real::spow_base_prepared(self, q)
     }
 }

@@ -268,6 +268,8 @@ impl Div for Ulp {
 /// scalings here; powers, |·| and √ through inari's enclosures ([`super::interval`]).
 impl Real for Ulp {
     type Dot = super::dot::UlpDot;
+    type Prepared = ();
+    fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {
         let x = k as f64;
         assert!(x as i64 == k, "integer constant {k} is not exact in f64");

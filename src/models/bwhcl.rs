@@ -10,17 +10,18 @@
 //! collision models are feedback interconnections of this law; their nondimensional forms are
 //! the same law with A = 1, β = B, γ = Γ, α = κ, k = 1.
 
-use crate::arith::{Real, Scalar};
+use crate::arith::{Exponent, Real, Scalar};
 
 /// The parameters of the BWHCL. `alpha_c` is kept beside `alpha` so that 1 − α is computed once
-/// (in the arithmetic of `R`, so it stays an enclosure for intervals).
+/// (in the arithmetic of `R`, so it stays an enclosure for intervals); the exponents n and p
+/// are prepared once ([`Exponent`]).
 #[derive(Clone, Debug)]
-pub struct BoucWenHertz<R> {
+pub struct BoucWenHertz<R: Real> {
     pub a: R,
     pub beta: R,
     pub gamma: R,
-    pub n: R,
-    pub p: R,
+    pub n: Exponent<R>,
+    pub p: Exponent<R>,
     pub alpha: R,
     pub alpha_c: R,
     pub k: R,
@@ -33,8 +34,8 @@ impl<R: Real> BoucWenHertz<R> {
             a,
             beta,
             gamma,
-            n,
-            p,
+            n: Exponent::new(n),
+            p: Exponent::new(p),
             alpha,
             alpha_c,
             k,
@@ -42,9 +43,9 @@ impl<R: Real> BoucWenHertz<R> {
     }
 
     /// ż = A u − β |z|^(n−1) z |u| − γ |z|^n u (eq:BWHCL, second line).
-    #[inline]
+    #[inline(always)]
     pub fn hysteretic_rate<T: Scalar<R>>(&self, z: &T, u: &T) -> T {
-        let (zs, za) = z.spow_apow(&self.n);
+        let (zs, za) = z.spow_apow_prepared(&self.n);
         u.scale(&self.a) - (zs * u.abs()).scale(&self.beta) - (za * u.clone()).scale(&self.gamma)
     }
 
@@ -52,12 +53,12 @@ impl<R: Real> BoucWenHertz<R> {
     /// restoring part of F_P in both nondimensional models.
     #[inline]
     pub fn force<T: Scalar<R>>(&self, x: &T, z: &T) -> T {
-        self.force_of(x.spow(&self.p), z.spow(&self.p))
+        self.force_of(x.spow_prepared(&self.p), z.spow_prepared(&self.p))
     }
 
     /// The same force from the signed powers |x|^(p−1)x and |z|^(p−1)z, for callers that
     /// need the powers for something else too.
-    #[inline]
+    #[inline(always)]
     pub fn force_of<T: Scalar<R>>(&self, xs: T, zs: T) -> T {
         -(xs.scale(&(self.alpha.clone() * self.k.clone()))
             + zs.scale(&(self.alpha_c.clone() * self.k.clone())))

@@ -20,12 +20,12 @@ use crate::arith::{Real, Scalar};
 
 /// NDBWMCM with parameters P = (B, Γ, κ, σ, n, p).
 #[derive(Clone, Debug)]
-pub struct Maxwell<R> {
+pub struct Maxwell<R: Real> {
     params: NdParams<R>,
     /// The BWHCL in nondimensional form: A = 1, β = B, γ = Γ, α = κ, k = 1.
     law: BoucWenHertz<R>,
-    /// p − 1, p + 1, 1/σ, κpσ, κ_c pσ.
-    pm1: R,
+    /// p − 1 = 0 (then the field is linear in Y and Z: |x|^0 = 1); p + 1, 1/σ, κpσ, κ_c pσ.
+    linear: bool,
     p1: R,
     inv_sigma: R,
     kps: R,
@@ -45,7 +45,7 @@ impl<R: Real> Maxwell<R> {
         );
         let ps = params.p.clone() * params.sigma.clone();
         Self {
-            pm1: params.p.clone() - R::one(),
+            linear: (params.p.clone() - R::one()).as_integer() == Some(0),
             p1: params.p.clone() + R::one(),
             inv_sigma: R::one() / params.sigma.clone(),
             kps: params.kappa.clone() * ps.clone(),
@@ -63,12 +63,12 @@ impl<R: Real> Maxwell<R> {
 
     /// (|x|^(p−1)x, |x|^(p−1)), the second `None` for p = 1 (the field is linear then and
     /// |x|^0 = 1 everywhere, 0 included).
-    #[inline]
+    #[inline(always)]
     fn powers<T: Scalar<R>>(&self, x: &T) -> (T, Option<T>) {
-        if self.pm1.as_integer() == Some(0) {
+        if self.linear {
             (x.clone(), None)
         } else {
-            let (s, b) = x.spow_base(&self.params.p);
+            let (s, b) = x.spow_base_prepared(&self.law.p);
             (s, Some(b))
         }
     }

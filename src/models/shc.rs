@@ -15,7 +15,7 @@ use crate::arith::{Real, Scalar};
 
 /// NDBWSHCCM with parameters P = (B, Γ, κ, σ, n, p).
 #[derive(Clone, Debug)]
-pub struct Shc<R> {
+pub struct Shc<R: Real> {
     params: NdParams<R>,
     /// The BWHCL in nondimensional form: A = 1, β = B, γ = Γ, α = κ, k = 1.
     law: BoucWenHertz<R>,
@@ -61,11 +61,12 @@ impl<R: Real> CollisionModel<R, 3> for Shc<R> {
     }
 
     /// F_P(X, Z, V) = −κ|X|^(p−1)X − κ_c|Z|^(p−1)Z − σ|X|^p V.
-    #[inline]
+    #[inline(always)]
     fn force<T: Scalar<R>>(&self, s: &[T; 3]) -> T {
         let [x, z, v] = s;
-        let (xs, xa) = x.spow_apow(&self.params.p);
-        self.law.force_of(xs, z.spow(&self.params.p)) - (xa * v.clone()).scale(&self.params.sigma)
+        let (xs, xa) = x.spow_apow_prepared(&self.law.p);
+        self.law.force_of(xs, z.spow_prepared(&self.law.p))
+            - (xa * v.clone()).scale(&self.params.sigma)
     }
 
     fn position<T: Scalar<R>>(&self, s: &[T; 3]) -> T {

@@ -29,6 +29,8 @@ pub mod tableau;
 
 pub use dense::DenseStep;
 
+use crate::arith::fastpow::Power;
+use std::sync::LazyLock;
 use tableau::{A, B, C, D, E3, E5, N_STAGES, N_STAGES_EXTENDED};
 
 /// Safety factor of the step-size controller (SciPy `SAFETY`).
@@ -41,6 +43,8 @@ const MAX_FACTOR: f64 = 10.0;
 /// (`err^(−1/8)` by [`crate::arith::fastpow`], a few ulps: the libm `powf` was 7% of a CoR's
 /// instructions; the step sequences of the SciPy reference tests are unchanged).
 const ERROR_EXPONENT: f64 = -1.0 / 8.0;
+/// x ↦ x^(−1/8), built on first use.
+static CONTROLLER_POWER: LazyLock<Power> = LazyLock::new(|| Power::new(ERROR_EXPONENT));
 /// Order `q` of the error estimator, used by [`select_initial_step`].
 const ERROR_ESTIMATOR_ORDER: f64 = 7.0;
 
@@ -155,6 +159,10 @@ fn madd(a: f64, b: f64, c: f64) -> f64 {
 }
 
 /// `y + h Σ_{j<s} w[j] K[j]`, componentwise (one stage argument, or the new state).
+///
+/// Summed in stage order as `y + h·(Σ_{j<s−1} w[j] K[j]) + (h·w[s−1])·K[s−1]`: the newest
+/// stage comes last with h folded into its weight, so the next evaluation waits for one FMA
+/// after `K[s−1]`, not two (the stages are a dependent chain: this is its latency).
 #[inline(always)]
 fn combine<const N: usize>(
     y: &[f64; N],
@@ -166,16 +174,23 @@ fn combine<const N: usize>(
     // Plain loops, no closures: with the tableau row a constant after inlining, the zero
     // tests fold away (a closure in `array::from_fn` is not always inlined, and then they
     // do not: measured 2× slower on the Maxwell model with one codegen unit).
+    let last = s - 1;
+    let h_last = h * w[last];
     let mut out = [0.0; N];
     for i in 0..N {
         let mut acc = 0.0;
-        for j in 0..s {
+        for j in 0..last {
             // The tableau is sparse: skipping its zeros saves a third of the work.
             if w[j] != 0.0 {
                 acc = madd(w[j], k[j][i], acc);
             }
         }
-        out[i] = madd(h, acc, y[i]);
+        let early = madd(h, acc, y[i]);
+        out[i] = if w[last] != 0.0 {
+            madd(h_last, k[last][i], early)
+        } else {
+            early
+        };
     }
     out
 }
@@ -460,7 +475,7 @@ where
                 let mut factor = if err == 0.0 {
                     MAX_FACTOR
                 } else {
-                    MAX_FACTOR.min(SAFETY * crate::arith::fastpow::pow(err, ERROR_EXPONENT))
+                    MAX_FACTOR.min(SAFETY * CONTROLLER_POWER.pow(err))
                 };
                 if rejected {
                     factor = factor.min(1.0);
@@ -480,7 +495,7 @@ where
             let factor = if non_finite {
                 MIN_FACTOR
             } else {
-                MIN_FACTOR.max(SAFETY * crate::arith::fastpow::pow(err, ERROR_EXPONENT))
+                MIN_FACTOR.max(SAFETY * CONTROLLER_POWER.pow(err))
             };
             h_abs *= factor;
             rejected = true;
