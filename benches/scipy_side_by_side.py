@@ -9,19 +9,21 @@ s = 1 (SHC) or (p-1)/(p+1) (Maxwell). Separation T_s = inf{T >= 0 : F <= 0 and V
 terminal event on g = max(F, -V) crossing zero downward (g(0) = max(0, 1) = 1; the event
 ignores T = 0 anyway); e = V(T_s).
 
-bwcl: `bwcl cor --model M --base P* --v0 v,v,...,v --format json` with REPEAT copies of the
-speed in one call; its time per CoR is the call's wall time / REPEAT. It INCLUDES the
-process start-up and JSON output amortized over REPEAT CoRs (nothing is subtracted). By
+bwcl: `bwcl cor --model M --base P* --v0 v,v,...,v --format json --timing` with REPEAT
+copies of the speed in one call. Two times per CoR: t_bwcl, the computation's own time as
+`--timing` reports it / REPEAT (like t_scipy, which is one solve_ivp call in a running
+interpreter: no start-up, parsing or output on either side), and t_wall, the call's wall time
+/ REPEAT (process start-up, argument parsing and JSON output included, amortized). By
 default RAYON_NUM_THREADS=1 (single-threaded, like SciPy); pass --threads N to change it.
 The binary is $BWCL_BIN, else target/release/bwcl at the repo root (built with
 `cargo build --release` if missing).
 
 Timing: the machine's speed drifts (a shared VM: the same solve_ivp call takes 28 to 70 ms
 within one run), so the two sides are timed in ROUNDS interleaved rounds per case, each one
-SciPy solve_ivp call right beside one bwcl call, and each round gives its own ratio
-t_scipy / t_bwcl. The columns are the medians over the rounds: t_scipy, t_bwcl, and the
-ratio (the median of the per-round ratios, so that a slow spell of the machine slows both
-sides of the ratios it enters). `cargo run --release --example results`
+SciPy solve_ivp call right beside one bwcl call, and each round gives its own ratios
+t_scipy / t_bwcl and t_scipy / t_wall. The columns are the medians over the rounds: t_scipy,
+t_bwcl, t_wall, and the ratios (the medians of the per-round ratios, so that a slow spell of
+the machine slows both sides of the ratios it enters). `cargo run --release --example results`
 (benches/generator/results.rs) runs this script with --json and adds an in-process bwcl time
 next to it.
 
@@ -33,6 +35,7 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -168,10 +171,12 @@ def find_bwcl():
 
 def bwcl_case(binary, model, base, v0, repeat, threads):
     """(run, result) as for SciPy: run() times one `bwcl cor` call of REPEAT CoRs and returns
-    the seconds per CoR (None if it failed); result() gives (e, nfev/steps, error)."""
+    the seconds per CoR (computation as `--timing` reports it, wall), or None if it failed;
+    result() gives (e, nfev/steps, error)."""
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
     speeds = ",".join([repr(v0)] * repeat)
-    cmd = [binary, "cor", "--model", model, "--base", base, "--v0", speeds, "--format", "json"]
+    cmd = [binary, "cor", "--model", model, "--base", base, "--v0", speeds, "--format", "json",
+           "--timing"]
     last = {}
 
     def run():
@@ -179,7 +184,10 @@ def bwcl_case(binary, model, base, v0, repeat, threads):
         r = subprocess.run(cmd, capture_output=True, text=True, env=env)
         dt = time.perf_counter() - t0
         last["r"] = r
-        return dt / repeat if r.returncode == 0 else None
+        m = re.search(r"timing: (\d+) case\(s\) in ([0-9.eE+-]+) s", r.stderr)
+        if r.returncode != 0 or not m or int(m.group(1)) != repeat:
+            return None
+        return float(m.group(2)) / repeat, dt / repeat
 
     def result():
         r = last["r"]
@@ -233,11 +241,12 @@ def main():
         print(f"bwcl = {binary}; one call = {args.repeat} CoRs (process start-up included), "
               f"RAYON_NUM_THREADS={args.threads}")
     print(f"per case: 1 warm-up round, then {ROUNDS} rounds of one SciPy call beside one bwcl "
-          f"call; medians over the rounds, ratio = median of the per-round ratios "
-          f"(min..max after it)")
+          f"call; medians over the rounds; ratio = median of the per-round t_scipy/t_bwcl "
+          f"(min..max after it), t_bwcl from --timing; t_wall and its ratio: the call's wall "
+          f"time per CoR")
     head = (f"{'case':<12} {'v0':>4} {'e_scipy':>20} {'e_bwcl':>20} {'|diff|':>9} "
             f"{'nfev/st_sp':>11} {'nfev/st_bw':>11} {'t_scipy/CoR':>12} {'t_bwcl/CoR':>12} "
-            f"{'ratio':>6} {'(range)':>11}")
+            f"{'ratio':>6} {'(range)':>11} {'t_wall':>10} {'ratio':>6}")
     print(head)
     print("-" * len(head))
     notes = []
@@ -248,16 +257,18 @@ def main():
             run_b = result_b = None
             if binary:
                 run_b, result_b = bwcl_case(binary, model, base, v0, args.repeat, args.threads)
-            times_s, times_b, ratios_case = [], [], []
+            times_s, times_b, times_w, ratios_case, ratios_wall = [], [], [], [], []
             for rnd in range(ROUNDS + 1):
                 t_s = run_s()
-                t_b = run_b() if run_b else None
+                t_bw = run_b() if run_b else None
                 if rnd == 0:
                     continue  # warm-up
                 times_s.append(t_s)
-                if t_b:
-                    times_b.append(t_b)
-                    ratios_case.append(t_s / t_b)
+                if t_bw:
+                    times_b.append(t_bw[0])
+                    times_w.append(t_bw[1])
+                    ratios_case.append(t_s / t_bw[0])
+                    ratios_wall.append(t_s / t_bw[1])
             ts, e_s, nfev_s, err_s = result_s()
             if err_s:
                 notes.append(f"{name} v0={v0}: SciPy failed: {err_s}")
@@ -268,7 +279,9 @@ def main():
                     notes.append(f"{name} v0={v0}: bwcl: {err_b}")
             t_s = statistics.median(times_s)
             t_b = statistics.median(times_b) if times_b else None
+            t_w = statistics.median(times_w) if times_w else None
             ratio = statistics.median(ratios_case) if ratios_case else None
+            ratio_w = statistics.median(ratios_wall) if ratios_wall else None
             spread = (f"{min(ratios_case):.0f}..{max(ratios_case):.0f}" if ratios_case
                       else "-")
             diff = abs(e_s - e_b) if (e_s is not None and e_b is not None) else None
@@ -276,17 +289,21 @@ def main():
                   f"{fmt(diff, '.2e'):>9} {fmt(nfev_s, ''):>11} {fmt(nfev_b, ''):>11} "
                   f"{fmt(t_s * 1e3, '.3f', ' ms'):>12} "
                   f"{fmt(t_b * 1e6 if t_b else None, '.1f', ' us'):>12} "
-                  f"{fmt(ratio, '.0f'):>6} {spread:>11}")
+                  f"{fmt(ratio, '.0f'):>6} {spread:>11} "
+                  f"{fmt(t_w * 1e6 if t_w else None, '.1f', ' us'):>10} {fmt(ratio_w, '.0f'):>6}")
             sys.stdout.flush()
             rows.append({"case": name, "v0": v0,
                          "ts_scipy": ts if ts is None or math.isfinite(ts) else None, "e_scipy": e_s,
                          "nfev_scipy": nfev_s, "t_scipy": t_s, "e_bwcl": e_b,
                          "nfev_bwcl": nfev_b, "t_bwcl": t_b, "ratio": ratio,
-                         "ratios": ratios_case})
+                         "ratios": ratios_case, "t_wall": t_w, "ratio_wall": ratio_w})
     ratios = sorted(r["ratio"] for r in rows if r["ratio"])
     if ratios:
         every = sorted(x for r in rows for x in r["ratios"])
-        print(f"ratio t_scipy/t_bwcl (CLI), per case: min {ratios[0]:.0f}, "
+        walls = sorted(r["ratio_wall"] for r in rows if r["ratio_wall"])
+        print(f"ratio t_scipy/t_wall, per case: min {walls[0]:.0f}, "
+              f"median {statistics.median(walls):.0f}, max {walls[-1]:.0f}")
+        print(f"ratio t_scipy/t_bwcl, per case: min {ratios[0]:.0f}, "
               f"median {statistics.median(ratios):.0f}, max {ratios[-1]:.0f}; "
               f"all {len(every)} rounds: median {statistics.median(every):.0f}, "
               f"{sum(x >= 300 for x in every)} of {len(every)} at 300 or more")

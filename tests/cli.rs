@@ -122,6 +122,23 @@ fn several_speeds_in_every_format() {
         assert!(head.split_whitespace().any(|c| c == col), "{head}");
     }
     assert_eq!(text.lines().count(), 4, "{text}");
+
+    // --timing: one line on stderr, the same output on stdout
+    let o = bwcl(&[&base[..], &["--format", "json", "--timing"]].concat());
+    assert_eq!(o.status.code(), Some(0));
+    let err = stderr(&o);
+    let line = err.trim_end();
+    assert!(!line.contains('\n'), "{err}");
+    let rest = line
+        .strip_prefix("bwcl: timing: 3 case(s) in ")
+        .unwrap_or_else(|| panic!("{err}"));
+    let secs: f64 = rest.split(' ').next().unwrap().parse().unwrap();
+    assert!(secs > 0.0 && secs < 60.0, "{err}");
+    let again: Vec<Value> = match serde_json::from_str(&stdout(&o)).unwrap() {
+        Value::Array(v) => v,
+        v => panic!("not an array: {v}"),
+    };
+    assert_eq!(again, a);
 }
 
 #[test]

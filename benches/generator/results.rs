@@ -889,20 +889,22 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
     };
     ctx.line(
         "Columns: the script times each case in 7 rounds (after a warm-up round), each one \
-         `solve_ivp(method=\"DOP853\", events=g)` call (Python RHS, in-process, no interpreter \
-         start) right beside one `bwcl cor` call with REPEAT copies of v0 (wall time / REPEAT: \
-         process start-up, argument parsing and JSON output included, amortized; \
-         RAYON_NUM_THREADS=1). t_scipy and t_bwcl CLI are the medians over the rounds; ratio \
-         (CLI) is the median of the 7 per-round ratios, so that a slow spell of the machine \
-         slows both sides of the ratios it enters. t_bwcl in-process = median of 7 batches \
-         (≈20 ms each) of one `impact` call, single thread, re-timed here right after the \
-         script (not interleaved with it; compare section 1 for its spread).",
+         `solve_ivp(method=\"DOP853\", events=g)` call (Python RHS, in a running interpreter) \
+         right beside one `bwcl cor --timing` call with REPEAT copies of v0 \
+         (RAYON_NUM_THREADS=1). t_bwcl CLI is the computation's time as `--timing` reports \
+         it / REPEAT (like t_scipy: no start-up, parsing or output); t_wall is the call's wall \
+         time / REPEAT (process start-up, argument parsing and JSON output included, \
+         amortized). Times are the medians over the rounds; each ratio is the median of the 7 \
+         per-round ratios, so that a slow spell of the machine slows both sides of the ratios \
+         it enters. t_bwcl in-process = median of 7 batches (≈20 ms each) of one `impact` \
+         call, single thread, re-timed here right after the script (not interleaved with it; \
+         compare section 1 for its spread).",
     );
     ctx.line("");
-    ctx.line("| case | v0 | t_scipy | t_bwcl in-process | ratio (in-process) | t_bwcl CLI | ratio (CLI) | |e_scipy − e_bwcl| |");
-    ctx.line("|---|---:|---:|---:|---:|---:|---:|---:|");
+    ctx.line("| case | v0 | t_scipy | t_bwcl in-process | ratio (in-process) | t_bwcl CLI | ratio (CLI, interleaved) | t_wall | ratio (wall) | |e_scipy − e_bwcl| |");
+    ctx.line("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut ratios = Vec::new();
-    let (mut cli, mut rounds) = (Vec::new(), Vec::new());
+    let (mut cli, mut rounds, mut wall) = (Vec::new(), Vec::new(), Vec::new());
     for r in v.as_array().into_iter().flatten() {
         let case = r["case"].as_str().unwrap_or("?");
         let v0 = r["v0"].as_f64().unwrap_or(f64::NAN);
@@ -921,18 +923,33 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
         };
         ratios.push(ts / ti);
         let rc = r["ratio"].as_f64().unwrap_or(f64::NAN);
+        let tw = r["t_wall"].as_f64().unwrap_or(f64::NAN);
+        let rw = r["ratio_wall"].as_f64().unwrap_or(f64::NAN);
         cli.push(rc);
-        rounds.extend(r["ratios"].as_array().into_iter().flatten().filter_map(|x| x.as_f64()));
+        wall.push(rw);
+        rounds.extend(
+            r["ratios"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|x| x.as_f64()),
+        );
         ctx.line(format!(
-            "| {case} | {v0} | {} | {} | {:.0}× | {} | {:.0}× | {de} |",
+            "| {case} | {v0} | {} | {} | {:.0}× | {} | {:.0}× | {} | {:.0}× | {de} |",
             fmt_t(ts),
             fmt_t(ti),
             ts / ti,
             fmt_t(tc),
-            rc
+            rc,
+            fmt_t(tw),
+            rw
         ));
     }
-    for (what, r) in [("CLI, per case", &mut cli), ("CLI, every round", &mut rounds)] {
+    for (what, r) in [
+        ("CLI, per case", &mut cli),
+        ("CLI, every round", &mut rounds),
+        ("CLI wall time, per case", &mut wall),
+    ] {
         r.retain(|x| x.is_finite());
         r.sort_by(|a, b| a.partial_cmp(b).unwrap());
         if !r.is_empty() {

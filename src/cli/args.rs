@@ -312,6 +312,10 @@ pub struct CorArgs {
     /// Write to FILE instead of stdout (replaced only when everything succeeded).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// Print to stderr the wall time of the computation (the cases only: no process start-up,
+    /// parsing or output), in total and per case.
+    #[arg(long)]
+    pub timing: bool,
 }
 
 #[derive(Args, Debug)]

@@ -47,25 +47,47 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
 fn cor(a: &CorArgs) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.params.model);
-    let (bytes, failed, total) = if a.engine.rigorous {
+    let (bytes, failed, total, elapsed) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let cases = input::cases::<Interval>(&a.params)?;
+        let start = std::time::Instant::now();
         let rows: Vec<RigorousRow> = cases
             .par_iter()
             .map(|c| rigorous_row(kind, c, &opts, a.engine.pieces))
             .collect();
+        let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
-        (output::rigorous_cor(&rows, a.format)?, failed, rows.len())
+        (
+            output::rigorous_cor(&rows, a.format)?,
+            failed,
+            rows.len(),
+            elapsed,
+        )
     } else {
         let opts = input::float_options(&a.engine)?;
         let cases = input::cases::<f64>(&a.params)?;
+        let start = std::time::Instant::now();
         let rows: Vec<FloatRow> = cases
             .par_iter()
             .map(|c| float_row(kind, c, &opts))
             .collect();
+        let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| r.error.is_some()).count();
-        (output::float_cor(&rows, a.format)?, failed, rows.len())
+        (
+            output::float_cor(&rows, a.format)?,
+            failed,
+            rows.len(),
+            elapsed,
+        )
     };
+    if a.timing {
+        let s = elapsed.as_secs_f64();
+        eprintln!(
+            "bwcl: timing: {total} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s))",
+            s / total.max(1) as f64 * 1e6,
+            rayon::current_num_threads()
+        );
+    }
     output::emit(a.out.as_deref(), &bytes)?;
     if failed > 0 {
         let what = if a.engine.rigorous {
