@@ -43,6 +43,11 @@ const MAX_FACTOR: f64 = 10.0;
 /// (`err^(−1/8)` by [`crate::arith::fastpow`], a few ulps: the libm `powf` was 7% of a CoR's
 /// instructions; the step sequences of the SciPy reference tests are unchanged).
 const ERROR_EXPONENT: f64 = -1.0 / 8.0;
+/// Below this error norm the step-size factor is at least [`CAPPED_FACTOR`]:
+/// min(10, 0.9·0.4^(−1/8)) = 1.0092…, which the few ulps of the table power cannot bring
+/// under 1.0001.
+const CAPPED_ERR: f64 = 0.4;
+const CAPPED_FACTOR: f64 = 1.0001;
 /// x ↦ x^(−1/8), built on first use.
 static CONTROLLER_POWER: LazyLock<Power> = LazyLock::new(|| Power::new(ERROR_EXPONENT));
 /// Order `q` of the error estimator, used by [`select_initial_step`].
@@ -472,15 +477,22 @@ where
             let err = self.error_norm(h, &y_new);
 
             if finite && err < 1.0 {
-                let mut factor = if err == 0.0 {
-                    MAX_FACTOR
+                if !rejected && err < CAPPED_ERR && h_abs * CAPPED_FACTOR >= self.max_step {
+                    // The next |h| is max_step whatever the exact factor (≥ CAPPED_FACTOR here):
+                    // a constant, so that the next step need not wait for err^(−1/8) (with
+                    // max_step binding, as at the paper's settings, this is most steps).
+                    self.h_abs = self.max_step;
                 } else {
-                    MAX_FACTOR.min(SAFETY * CONTROLLER_POWER.pow(err))
-                };
-                if rejected {
-                    factor = factor.min(1.0);
+                    let mut factor = if err == 0.0 {
+                        MAX_FACTOR
+                    } else {
+                        MAX_FACTOR.min(SAFETY * CONTROLLER_POWER.pow(err))
+                    };
+                    if rejected {
+                        factor = factor.min(1.0);
+                    }
+                    self.h_abs = h_abs * factor;
                 }
-                self.h_abs = h_abs * factor;
                 self.t_old = t;
                 self.y_old = self.y;
                 self.t = t_new;
@@ -690,6 +702,25 @@ where
 mod tests {
     use super::tableau::*;
     use super::*;
+
+    /// The controller's shortcut is exact: below `CAPPED_ERR` the factor is at least
+    /// `CAPPED_FACTOR` > 1, so |h|·factor ≥ max_step and the next step is max_step either way.
+    #[test]
+    fn capped_steps_keep_max_step_exactly() {
+        let mut err = 1e-300;
+        while err < CAPPED_ERR {
+            let factor = MAX_FACTOR.min(SAFETY * CONTROLLER_POWER.pow(err));
+            assert!(factor >= CAPPED_FACTOR, "err = {err:e}: factor {factor}");
+            err *= 1.001;
+        }
+        for k in 0..1000 {
+            let err = CAPPED_ERR.next_down() - k as f64 * f64::EPSILON;
+            assert!(
+                SAFETY * CONTROLLER_POWER.pow(err) >= CAPPED_FACTOR,
+                "err = {err:e}"
+            );
+        }
+    }
 
     /// Row sums `Σ_j a_{sj} = c_s` (every stage is consistent).
     #[test]
