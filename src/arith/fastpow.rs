@@ -99,6 +99,14 @@ impl PowTable {
     /// x^q for x > 0 (the library `powf` outside the tables, see the module doc).
     #[inline(always)]
     pub fn pow(&self, x: f64) -> f64 {
+        self.pow_and_mul(x, 1.0).0
+    }
+
+    /// (x^q, x^q·y) for x > 0. The product is formed as (2^(kq)·cᵢ^q·y)·Σ, whose first factor
+    /// is ready before the series: one multiplication less after it than (x^q)·y (the
+    /// right-hand side waits for this product: |x|^(q−1)·x).
+    #[inline(always)]
+    pub fn pow_and_mul(&self, x: f64, y: f64) -> (f64, f64) {
         let ix = x.to_bits();
         let tmp = ix.wrapping_sub(OFF);
         let i = ((tmp >> (52 - LOG_BITS)) as usize) & (NSUB - 1);
@@ -108,10 +116,12 @@ impl PowTable {
         // outside [K_MIN, K_MIN + NK), and the unsigned comparison rejects either side); every
         // x when q has no tables (nk = 0)
         if kk >= self.nk {
-            return slow(x, self.q);
+            let p = slow(x, self.q);
+            return (p, p * y);
         }
         let m = f64::from_bits(ix.wrapping_sub(tmp & (0xfff << 52)));
         let r = m.mul_add(self.invc[i], -1.0);
+        let e = self.ek[kk as usize & (NK - 1)] * self.pc[i];
         let b = &self.binom;
         let r2 = r * r;
         // Estrin's scheme, b[0] = 1: (1 + b₁r) + r²((b₂ + b₃r) + r²(b₄ + b₅r))
@@ -119,7 +129,7 @@ impl PowTable {
         let p23 = b[3].mul_add(r, b[2]);
         let p45 = b[5].mul_add(r, b[4]);
         let s = p45.mul_add(r2, p23).mul_add(r2, p01);
-        (self.ek[kk as usize & (NK - 1)] * self.pc[i]) * s
+        (e * s, (e * y) * s)
     }
 }
 
@@ -163,6 +173,13 @@ impl Power {
     #[inline(always)]
     pub fn pow(&self, x: f64) -> f64 {
         self.0.pow(x)
+    }
+
+    /// (x^q, x^q·y) for x ≥ 0, the product with one rounding more than x^q
+    /// ([`PowTable::pow_and_mul`]).
+    #[inline(always)]
+    pub fn pow_and_mul(&self, x: f64, y: f64) -> (f64, f64) {
+        self.0.pow_and_mul(x, y)
     }
 }
 

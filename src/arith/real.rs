@@ -256,7 +256,7 @@ impl Real for f64 {
                 if *self == 0.0 {
                     0.0
                 } else {
-                    t.pow(self.abs()) * self
+                    t.pow_and_mul(self.abs(), *self).1
                 }
             }
         }
@@ -275,7 +275,7 @@ impl Real for f64 {
                     (0.0, 0.0)
                 } else {
                     // a ≥ 0: a·|x| = |a·x|, one multiplication fewer
-                    let s = t.pow(self.abs()) * self;
+                    let s = t.pow_and_mul(self.abs(), *self).1;
                     (s, s.abs())
                 }
             }
@@ -291,8 +291,8 @@ impl Real for f64 {
                 if *self == 0.0 {
                     (0.0, 0.0)
                 } else {
-                    let a = t.pow(self.abs());
-                    (a * self, a)
+                    let (a, s) = t.pow_and_mul(self.abs(), *self);
+                    (s, a)
                 }
             }
         }
