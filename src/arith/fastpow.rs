@@ -6,8 +6,8 @@
 //! power. exp(q·ln x) chains two library calls (≈ 40 ns per SHC right-hand side on this
 //! project's machine in a dependent-chain microbenchmark); with tables built once per q the
 //! chain is a few integer operations, three loads and a degree-5 polynomial (9 floating-point
-//! operations in all: the engine is bound by their count as much as by their latency, a
-//! version with 8 more multiplications per power and 3 cycles less latency was 12% slower).
+//! operations in all; a version with 8 more multiplications per power, meant to shorten the
+//! chain, was 12% slower per CoR).
 //!
 //! With x = 2^k·m, m ∈ [√½, √2), the subinterval i of m (the top [`LOG_BITS`] bits of its
 //! mantissa offset), a short reciprocal cᵢ⁻¹ of its centre and r = m·cᵢ⁻¹ − 1 (one FMA,
@@ -25,11 +25,12 @@
 //! [2^−64.5, 2^63.5): 0, subnormals, ∞, NaN; or q outside the range) the value is the
 //! library `powf`.
 //!
-//! The tables are built on an exponent's first use (≈ 1150 calls of `powf`, ≈ 25 µs) and kept in a registry; a model
-//! holds a [`Power`] per exponent (made when the model is built, through
-//! [`super::Exponent`]), so the right-hand side reads its tables with no lookup by q. A table
-//! is a pure function of q: a value never depends on what else the process computed. Only
-//! the f64 engine uses this: interval powers are enclosures ([`super::elementary`]).
+//! The tables are built on an exponent's first use (≈ 1150 calls of `powf`, ≈ 9 µs on this
+//! project's machine) and kept in a registry; a model holds a [`Power`] per exponent (made
+//! when the model is built, through [`super::Exponent`]), so the right-hand side reads its
+//! tables with no lookup by q. A table is a pure function of q: a value never depends on
+//! what else the process computed. Only the f64 engine uses this: interval powers are
+//! enclosures ([`super::elementary`]).
 
 use std::collections::HashMap;
 use std::sync::{Arc, LazyLock, Mutex};
@@ -146,7 +147,7 @@ fn slow(x: f64, q: f64) -> f64 {
 pub struct Power(Arc<PowTable>);
 
 impl Power {
-    /// q's tables, from the process's registry (built on q's first use, ≈ 25 µs). For q outside
+    /// q's tables, from the process's registry (built on q's first use, ≈ 9 µs). For q outside
     /// [[`Q_MIN`], [`Q_MAX`]] nothing is tabulated and every value is the library `powf`.
     pub fn new(q: f64) -> Self {
         let key = q.to_bits();
