@@ -31,7 +31,12 @@ fn stderr(o: &Output) -> String {
 fn json(args: &[&str]) -> Vec<Value> {
     let o = bwcl(args);
     assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
-    match serde_json::from_str(&stdout(&o)).unwrap() {
+    rows(&o)
+}
+
+/// The JSON array on stdout.
+fn rows(o: &Output) -> Vec<Value> {
+    match serde_json::from_str(&stdout(o)).unwrap() {
         Value::Array(a) => a,
         v => panic!("not an array: {v}"),
     }
@@ -134,11 +139,7 @@ fn several_speeds_in_every_format() {
         .unwrap_or_else(|| panic!("{err}"));
     let secs: f64 = rest.split(' ').next().unwrap().parse().unwrap();
     assert!(secs > 0.0 && secs < 60.0, "{err}");
-    let again: Vec<Value> = match serde_json::from_str(&stdout(&o)).unwrap() {
-        Value::Array(v) => v,
-        v => panic!("not an array: {v}"),
-    };
-    assert_eq!(again, a);
+    assert_eq!(rows(&o), a);
 }
 
 #[test]

@@ -949,6 +949,7 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
         ("CLI, per case", &mut cli),
         ("CLI, every round", &mut rounds),
         ("CLI wall time, per case", &mut wall),
+        ("in-process", &mut ratios),
     ] {
         r.retain(|x| x.is_finite());
         r.sort_by(|a, b| a.partial_cmp(b).unwrap());
@@ -963,17 +964,7 @@ fn section3(ctx: &mut Ctx, rows: &[Row1]) {
             ));
         }
     }
-    if !ratios.is_empty() {
-        let mut r = ratios.clone();
-        r.retain(|x| x.is_finite());
-        r.sort_by(|a, b| a.partial_cmp(b).unwrap());
-        ctx.line(format!(
-            "\nSciPy / bwcl (in-process): min {:.0}×, median {:.0}×, max {:.0}×\n",
-            r.first().copied().unwrap_or(f64::NAN),
-            median(&r),
-            r.last().copied().unwrap_or(f64::NAN)
-        ));
-    }
+    ctx.line("");
 }
 
 fn retime(ctx: &Ctx, kind: ModelKind, base: &str, v0: f64) -> f64 {

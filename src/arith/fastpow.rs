@@ -165,11 +165,6 @@ impl Power {
         Power(t)
     }
 
-    /// The exponent q.
-    pub fn q(&self) -> f64 {
-        self.0.q
-    }
-
     /// x^q for x ≥ 0 (see the module doc for the method and its accuracy).
     #[inline(always)]
     pub fn pow(&self, x: f64) -> f64 {
@@ -190,24 +185,23 @@ impl std::fmt::Debug for Power {
     }
 }
 
-/// At most this many exponents are kept in the registry (≈ 3 KiB each).
+/// At most this many exponents are kept in the registry (≈ 9 KiB each).
 const REGISTRY_CAP: usize = 1024;
 
 /// The tables of the exponents in use, by the bits of q.
 static REGISTRY: LazyLock<Mutex<HashMap<u64, Arc<PowTable>>>> =
     LazyLock::new(|| Mutex::new(HashMap::new()));
 
-/// x^q for x ≥ 0 by q's tables ([`Power::new`], then [`Power::pow`]): for a one-off power;
-/// a power evaluated again and again keeps its [`Power`].
-pub fn pow(x: f64, q: f64) -> f64 {
-    Power::new(q).pow(x)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use rug::Float;
     use rug::ops::Pow;
+
+    /// x^q through q's registry handle.
+    fn pow(x: f64, q: f64) -> f64 {
+        Power::new(q).pow(x)
+    }
 
     /// |a − b| / |b| in units of 2⁻⁵³ (half an ulp), b the MPFR value of x^q.
     fn ulps(x: f64, q: f64, a: f64) -> f64 {
@@ -298,7 +292,7 @@ mod tests {
         );
         // two handles on one exponent share its tables
         let (a, b) = (Power::new(0.77), Power::new(0.77));
-        assert!(Arc::ptr_eq(&a.0, &b.0) && a.q() == 0.77);
+        assert!(Arc::ptr_eq(&a.0, &b.0) && a.0.q == 0.77);
         // outside [Q_MIN, Q_MAX]: no tables, exactly the library powf
         for (x, q) in [(3.0, 20.5), (0.4, -2.5), (7.0, 8.5)] {
             assert_eq!(Power::new(q).pow(x).to_bits(), x.powf(q).to_bits());

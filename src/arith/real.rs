@@ -247,6 +247,8 @@ impl Real for f64 {
             (a * self, a)
         }
     }
+    // The three prepared powers repeat the same match on purpose: one shared helper returning
+    // (a, a·x) measured 3% slower per CoR (same values).
     #[inline(always)]
     fn spow_prepared(&self, q: &Exponent<f64>) -> f64 {
         match q.prepared() {
