@@ -111,6 +111,59 @@ fn a_deliberately_wrong_value_is_excluded() {
 }
 
 #[test]
+fn entire_integer_exponents_are_proved() {
+    // a whole-number n or p ≥ 3 makes |w|^(q−1)w or |w|^q an entire power; these exited 101
+    // ("a recurrence power", issue #12). Each is proved, tight, and holds the tight-tolerance
+    // float value
+    let tight = FloatOptions {
+        ode: Options {
+            rtol: 1e-13,
+            atol: 1e-15,
+            ..Options::paper()
+        },
+        ..Default::default()
+    };
+    let cases = [
+        (ModelKind::Shc, "1,0,0.5,1,3,1.2"),
+        (ModelKind::Shc, "1,0,0.5,1,4,1.2"),
+        (ModelKind::Shc, "1,0,0.5,1,10,1.2"),
+        (ModelKind::Shc, "1,0,0.5,1,50,1.2"),
+        (ModelKind::Shc, "1,0,0.5,1,1.3,3"),
+        (ModelKind::Shc, "1,-0.5,0.5,0.2,3,3"),
+        (ModelKind::Maxwell, "1,0,0.5,1,3,2.5"),
+        (ModelKind::Maxwell, "1,0,0.5,1,1.5,3"),
+        (ModelKind::Maxwell, "1,0.5,0.5,1,4,4"),
+    ];
+    for (kind, nd) in cases {
+        let pi = NdParams::<Interval>::parse(kind, nd).unwrap();
+        let pf = NdParams::<f64>::parse(kind, nd).unwrap();
+        let (r, f) = match kind {
+            ModelKind::Shc => (
+                rigorous_impact(&Shc::new(pi), &TaylorOptions::default()).map(|r| (r.ts, r.e)),
+                impact(&Shc::new(pf), &tight).map(|f| (f.ts, f.e)).unwrap(),
+            ),
+            ModelKind::Maxwell => (
+                rigorous_impact(&Maxwell::new(pi), &TaylorOptions::default()).map(|r| (r.ts, r.e)),
+                impact(&Maxwell::new(pf), &tight)
+                    .map(|f| (f.ts, f.e))
+                    .unwrap(),
+            ),
+        };
+        let (ts, e) = r.unwrap_or_else(|err| panic!("{kind:?} {nd}: {err}"));
+        assert!(e.wid() < 1e-10 && ts.wid() < 1e-10, "{nd}: {ts:?} {e:?}");
+        let (fts, fe) = (f.0.unwrap(), f.1);
+        assert!(
+            e.inf() - 1e-10 <= fe && fe <= e.sup() + 1e-10,
+            "{nd}: e {fe} ∉ {e:?}"
+        );
+        assert!(
+            ts.inf() - 1e-10 <= fts && fts <= ts.sup() + 1e-10,
+            "{nd}: T_s {fts} ∉ {ts:?}"
+        );
+    }
+}
+
+#[test]
 fn undamped_linear_case_encloses_pi_and_one() {
     // B = Γ = σ = 0, p = n = 1: Z = X, X'' = −X: T_s = π, e = 1 (the closed set of the appendix)
     let p = NdParams::<Interval>::with_admissibility(

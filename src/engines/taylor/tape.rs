@@ -200,6 +200,16 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 ),
                 Op::Twin(..) => unreachable!("not recorded"),
             };
+            // |w|^(q−1)w = w^q (q odd) and |w|^q = w^q (q even) are entire: for q ≥ 3 they are
+            // recorded as products (square and multiply), which are exact as series and need no
+            // sign of w (the power recurrence needs w_0 ≠ 0). q = 0, 1, 2 are handled in place.
+            if let Op::Spow(a, c) | Op::Apow(a, c) = op
+                && let Some(q) = consts[c].as_integer().filter(|&q| q >= 3)
+                && analytic_power(&consts[c], matches!(op, Op::Spow(..)))
+            {
+                map[i] = entire_power(&mut ops, &mut seen, a, q as u64);
+                continue;
+            }
             map[i] = *seen.entry(key).or_insert_with(|| {
                 ops.push(op);
                 ops.len() - 1
@@ -475,6 +485,34 @@ impl<R: Real, const N: usize> Tape<R, N> {
     }
 }
 
+/// Records w^q (q ≥ 1) as products of earlier nodes by square and multiply (at most
+/// 2·log₂ q products, shared with equal products already recorded); returns the node of w^q.
+fn entire_power(
+    ops: &mut Vec<Op>,
+    seen: &mut std::collections::HashMap<Key, usize>,
+    w: usize,
+    q: u64,
+) -> usize {
+    let mut mul = |a: usize, b: usize| {
+        *seen.entry(Key::Op(3, a, b, 0, 0)).or_insert_with(|| {
+            ops.push(Op::Mul(a, b));
+            ops.len() - 1
+        })
+    };
+    // w^q = Π over the set bits of q of w^(2^j)
+    let (mut acc, mut sq, mut e) = (None::<usize>, w, q);
+    while e > 0 {
+        if e & 1 == 1 {
+            acc = Some(acc.map_or(sq, |a| mul(a, sq)));
+        }
+        e >>= 1;
+        if e > 0 {
+            sq = mul(sq, sq);
+        }
+    }
+    acc.expect("q ≥ 1")
+}
+
 /// True when the power is an entire function: |w|^(q−1)w with odd integer q ≥ 1, |w|^q with
 /// even integer q ≥ 0.
 pub fn analytic_power<R: Real>(q: &R, signed: bool) -> bool {
@@ -614,6 +652,7 @@ mod tests {
     use super::*;
     use crate::arith::series::Series;
     use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+    use inari::Interval;
 
     /// Coefficients by the slow route: Picard on truncated series, re-evaluating the model on
     /// `Series` K times.
@@ -636,6 +675,42 @@ mod tests {
             }
         }
         x
+    }
+
+    #[test]
+    fn entire_powers_expand_at_zero() {
+        // s′ = 1, y′ = |s|^(q−1)s (q odd) or |s|^q (q even) from s = 0: y = t^(q+1)/(q+1). The
+        // power's operand starts at 0, where the power recurrence does not exist: entire powers
+        // must be expanded as products (they panicked for q ≥ 3, issue #12)
+        let zero = Interval::try_from((0.0, 0.0)).unwrap();
+        let one = Interval::try_from((1.0, 1.0)).unwrap();
+        for q in [3_u32, 4, 5, 6, 10, 11, 50] {
+            let qi = Interval::try_from((q as f64, q as f64)).unwrap();
+            let signed = q % 2 == 1;
+            let tape = Tape::<Interval, 2>::record(|v| {
+                let p = if signed {
+                    v[0].spow(&qi)
+                } else {
+                    v[0].apow(&qi)
+                };
+                vec![v[1].scale(&zero).shift(&one), p]
+            });
+            assert!(tape.switching().is_empty(), "q = {q}: an entire power");
+            let order = 60;
+            let mut ws = Workspace::default();
+            let j = tape.jet(&[zero, zero], order, &mut ws).unwrap();
+            for (k, c) in j[1].iter().enumerate() {
+                let exact = if k == q as usize + 1 {
+                    1.0 / (q as f64 + 1.0)
+                } else {
+                    0.0
+                };
+                assert!(
+                    c.inf() <= exact && exact <= c.sup() && c.wid() <= 1e-14,
+                    "q = {q}, k = {k}: {c:?} vs {exact}"
+                );
+            }
+        }
     }
 
     #[test]
