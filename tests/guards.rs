@@ -1,0 +1,334 @@
+//! Toy fields with closed-form solutions, each driving one soundness guard of the rigorous
+//! engine through the engine's own code (issue #12): removing the guard makes a test here fail
+//! (the commands and results are in `proofs/MUTANTS.md`).
+//!
+//! | guard | test |
+//! |---|---|
+//! | a-priori inclusion test of the Taylor step | `a_taylor_step_whose_first_guess_fails` |
+//! | Picard inclusion test of the low-order step | `low_order_steps_toward_a_blow_up` |
+//! | error term of Q⁻¹ in Lohner's method | `q_inverse_encloses_the_exact_inverse` |
+//! | interval Newton's existence proof N(T) ⊆ int T | `newton_claims_no_root_it_has_not_proved` |
+//! | the T_s enclosure | `harmonic_separation_encloses_pi_exactly` |
+//! | grazing: undecidable, never guessed | `a_grazing_event_is_undecided` |
+//!
+//! References are exact: rationals (the doubles' values) against MPFR at 256 bits.
+
+use bwcl::arith::Scalar;
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::engines::taylor::event::{Verdict, scan_piece};
+use bwcl::engines::taylor::flow::point;
+use bwcl::engines::taylor::lohner::inverse_enclosure;
+use bwcl::engines::taylor::newton::{Newton, interval_newton};
+use bwcl::engines::taylor::step::{
+    StepOut, Tapes, Workspaces, jacobian_orders, low_order_step, taylor_eval, taylor_step,
+};
+use bwcl::engines::taylor::tape::{Tape, Workspace};
+use bwcl::models::{Admissibility, ModelKind, NdParams, Shc};
+use bwcl::observables::rigorous::rigorous_impact;
+use inari::Interval;
+use rug::{Float, Rational};
+
+const PREC: u32 = 256;
+
+fn iv(lo: f64, hi: f64) -> Interval {
+    Interval::try_from((lo, hi)).unwrap()
+}
+
+/// lo ≤ x ≤ hi, exactly.
+fn encloses(i: Interval, x: &Float) -> bool {
+    !i.is_empty() && Float::with_val(PREC, i.inf()) <= *x && *x <= Float::with_val(PREC, i.sup())
+}
+
+/// x′ = x² from x(0) = 1: x(t) = 1/(1 − t), blowing up at t = 1.
+fn blow_up_tape() -> Tape<Interval, 1> {
+    Tape::<Interval, 1>::record(|v| vec![v[0].clone() * v[0].clone()])
+}
+
+fn blow_up_exact(t: f64) -> Float {
+    Float::with_val(PREC, 1) / (Float::with_val(PREC, 1) - Float::with_val(PREC, t))
+}
+
+/// The piece encloses x(t) = 1/(1 − t) at 41 times of its span.
+fn piece_holds_blow_up(out: &StepOut<1>) {
+    let (t0, t1) = (out.piece.t0(), out.piece.t1());
+    for i in 0..=40 {
+        let t = t0 + (t1 - t0) * i as f64 / 40.0;
+        let t = t.min(t1);
+        let enc = out.piece.enclose(point(t))[0];
+        assert!(
+            encloses(enc, &blow_up_exact(t)),
+            "x({t}) = {} ∉ {enc:?} (piece [{t0}, {t1}])",
+            blow_up_exact(t).to_f64()
+        );
+        assert!(
+            encloses(out.apriori[0], &blow_up_exact(t)),
+            "a-priori box at {t}"
+        );
+    }
+    assert!(encloses(out.x1[0], &blow_up_exact(t1)), "x1 at {t1}");
+}
+
+#[test]
+fn a_taylor_step_whose_first_guess_fails() {
+    // Low orders and a loose tolerance make the step long against the blow-up at t = 1: the
+    // first a-priori guess (the polynomial over [0, h] with the remainder at X, inflated)
+    // misses the solution, and the inclusion test must reject it. Whatever step is taken, the
+    // piece, its end and its a-priori box hold the exact solution, and the a-priori box is a
+    // fixed point of the enclosure test (Σ x_k(X)[0,h]^k + [0,h]^K x_K(Y) ⊆ Y).
+    let tape = blow_up_tape();
+    let tapes = Tapes::of(&tape);
+    let mut taken = 0;
+    for order in [2, 3, 4, 6, 8, 16] {
+        for h_max in [0.3, 0.5, 0.7, 0.9, 0.95] {
+            for tol in [1e-15, 1e-6, 1e-2, 1.0, 1e3] {
+                let mut ws = Workspaces::default();
+                let Ok(out) = taylor_step(
+                    &tapes,
+                    &mut ws,
+                    0.0,
+                    &[point(1.0)],
+                    order,
+                    jacobian_orders(order),
+                    tol,
+                    h_max,
+                    1e-9,
+                    &[0],
+                    None,
+                ) else {
+                    continue;
+                };
+                taken += 1;
+                piece_holds_blow_up(&out);
+                // the a-priori box validates itself
+                let y = out.apriori;
+                let mut jws = Workspace::default();
+                let jy = tape.jet(&y, order, &mut jws).unwrap();
+                let jx = tape.jet(&[point(1.0)], order, &mut jws).unwrap();
+                let coefs: Vec<[Interval; 1]> = (0..order).map(|k| [jx[0][k]]).collect();
+                let s = iv(0.0, out.piece.t1());
+                let again = taylor_eval(&coefs, &[jy[0][order]], s);
+                assert!(
+                    again[0].subset(y[0]),
+                    "order {order}, h_max {h_max}, tol {tol}: Y = {y:?} fails its own test: {again:?}"
+                );
+            }
+        }
+    }
+    assert!(taken > 50, "only {taken} steps validated");
+}
+
+#[test]
+fn low_order_steps_toward_a_blow_up() {
+    // Picard: Y ⊇ X + [0,h]·f(Y). For h ≥ 1/4 no box validates x′ = x² from 1 (1 + h b² ≤ b
+    // has no solution), so the step must fail; below, the piece holds the exact solution.
+    let tape = blow_up_tape();
+    let mut validated = 0;
+    for h in [0.01, 0.05, 0.1, 0.2, 0.24, 0.3, 0.5, 0.7, 0.9, 0.99] {
+        match low_order_step(&tape, 0.0, &[point(1.0)], h) {
+            Some(out) => {
+                validated += 1;
+                assert!(h < 0.25, "h = {h}: no box can validate, yet one did");
+                piece_holds_blow_up(&out);
+            }
+            None => assert!(h > 0.05, "h = {h}: a small step should validate"),
+        }
+    }
+    assert!(validated >= 3);
+}
+
+/// The exact inverse of a 3×3 matrix of doubles, as rationals (adjugate / determinant).
+fn exact_inverse(q: &[[f64; 3]; 3]) -> [[Rational; 3]; 3] {
+    let r = |i: usize, j: usize| Rational::from_f64(q[i][j]).unwrap();
+    let minor = |i: usize, j: usize| {
+        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
+        let (c, d) = ((j + 1) % 3, (j + 2) % 3);
+        // cofactor with the cyclic index trick (signs included)
+        r(a, c) * r(b, d) - r(a, d) * r(b, c)
+    };
+    let det = r(0, 0) * minor(0, 0) + r(0, 1) * minor(0, 1) + r(0, 2) * minor(0, 2);
+    std::array::from_fn(|i| std::array::from_fn(|j| minor(j, i) / det.clone()))
+}
+
+#[test]
+fn q_inverse_encloses_the_exact_inverse() {
+    // Q from rotations in doubles is orthogonal only up to rounding: Q⁻¹ ≠ Qᵀ, and the
+    // enclosure of Q⁻¹ must hold the exact inverse (the Neumann-series error term)
+    let mut strict = 0;
+    for k in 1..200 {
+        let (a, b) = (0.037 * k as f64, 0.011 * k as f64 + 0.3);
+        let (sa, ca, sb, cb) = (a.sin(), a.cos(), b.sin(), b.cos());
+        // R_z(a)·R_x(b)
+        let q = [
+            [ca, -sa * cb, sa * sb],
+            [sa, ca * cb, -ca * sb],
+            [0.0, sb, cb],
+        ];
+        let qi = inverse_enclosure(&q).expect("near-orthogonal");
+        let exact = exact_inverse(&q);
+        for i in 0..3 {
+            for j in 0..3 {
+                let (lo, hi) = (
+                    Rational::from_f64(qi[i][j].inf()).unwrap(),
+                    Rational::from_f64(qi[i][j].sup()).unwrap(),
+                );
+                assert!(
+                    lo <= exact[i][j] && exact[i][j] <= hi,
+                    "k = {k}, ({i},{j}): {} ∉ {:?}",
+                    exact[i][j].to_f64(),
+                    qi[i][j]
+                );
+                assert!(qi[i][j].wid() < 1e-14);
+                if exact[i][j] != Rational::from_f64(q[j][i]).unwrap() {
+                    strict += 1;
+                }
+            }
+        }
+    }
+    // the transpose alone is not the inverse for most entries: the test has teeth
+    assert!(strict > 1000, "only {strict} entries where Q⁻¹ ≠ Qᵀ");
+}
+
+#[test]
+fn newton_claims_no_root_it_has_not_proved() {
+    // g(t) = a (t − r) on T = [0, 1] with a derivative enclosure [a/w, a·w] (valid, loose):
+    // Root only if r ∈ T (and then it holds r), never for r outside T
+    let mut state = 0x2545_F491_4F6C_DD1D_u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut roots, mut undecided_outside) = (0, 0);
+    for _ in 0..20_000 {
+        let a = -(0.1 + 10.0 * next());
+        let w = 1.0 + 20.0 * next();
+        // roots inside and just outside T, some at a few ulps beyond the ends
+        let r = match (next() * 4.0) as u32 {
+            0 => 1.0 + next() * 1e-12,
+            1 => -next() * 1e-12,
+            2 => 1.0 + f64::EPSILON * (1.0 + (next() * 8.0).floor()),
+            _ => next() * 1.2 - 0.1,
+        };
+        let ri = Rational::from_f64(r).unwrap();
+        let g = |m: f64| point(a) * (point(m) - point(r));
+        let d = iv(a * w, a / w);
+        let inside = Rational::from(0) <= ri && ri <= Rational::from(1);
+        match interval_newton(iv(0.0, 1.0), g, |_| Some(d)) {
+            Newton::Root(t) => {
+                roots += 1;
+                assert!(inside, "r = {r} ∉ T, yet Root({t:?})");
+                let (lo, hi) = (
+                    Rational::from_f64(t.inf()).unwrap(),
+                    Rational::from_f64(t.sup()).unwrap(),
+                );
+                assert!(lo <= ri && ri <= hi, "r = {r} ∉ {t:?}");
+            }
+            Newton::NoRoot => assert!(!inside, "r = {r} ∈ T, yet NoRoot"),
+            Newton::Undecided => {
+                if !inside {
+                    undecided_outside += 1;
+                }
+            }
+        }
+    }
+    assert!(roots > 3000, "{roots}");
+    // the loose derivative makes Newton stall outside T: without the existence proof these
+    // cases would be claimed as roots
+    assert!(undecided_outside > 100, "{undecided_outside}");
+}
+
+#[test]
+fn harmonic_separation_encloses_pi_exactly() {
+    // B = Γ = σ = 0, p = n = 1: Z = X, X″ = −X from X = 0, V = −1: F = sin T, V = −cos T,
+    // T_s = π and e = 1 — compared with π itself, not a double near it
+    let p = NdParams::<Interval>::with_admissibility(
+        ModelKind::Shc,
+        Admissibility::Closed,
+        point(0.0),
+        point(0.0),
+        point(0.5),
+        point(0.0),
+        point(1.0),
+        point(1.0),
+    )
+    .unwrap();
+    let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
+    let pi = Float::with_val(PREC, rug::float::Constant::Pi);
+    assert!(encloses(r.ts, &pi), "π ∉ {:?}", r.ts);
+    assert!(encloses(r.e, &Float::with_val(PREC, 1)), "1 ∉ {:?}", r.e);
+    assert!(
+        r.ts.wid() < 1e-11 && r.e.wid() < 1e-12,
+        "{:?} {:?}",
+        r.ts,
+        r.e
+    );
+}
+
+/// s′ = 1 from s = 0, with the outputs F = (s − 1)² + c and V = 1: one Taylor piece over
+/// [0, 2], scanned for the event.
+fn grazing(c: f64) -> Verdict<1> {
+    let ci = point(c);
+    let one = point(1.0);
+    let tape = Tape::<Interval, 1>::record(|v| {
+        let d = v[0].shift(&-one);
+        vec![
+            v[0].scale(&point(0.0)).shift(&one),
+            (d.clone() * d).shift(&ci),
+            v[0].scale(&point(0.0)).shift(&one),
+        ]
+    });
+    let tapes = Tapes::of(&tape);
+    let mut ws = Workspaces::default();
+    let out = taylor_step(
+        &tapes,
+        &mut ws,
+        0.0,
+        &[point(0.0)],
+        8,
+        2,
+        1e-15,
+        2.0,
+        1e-9,
+        &[0],
+        None,
+    )
+    .ok()
+    .expect("s′ = 1 steps exactly");
+    assert_eq!(out.piece.t1(), 2.0);
+    scan_piece(&tape, &mut Workspace::default(), &out.piece)
+}
+
+#[test]
+fn a_grazing_event_is_undecided() {
+    // F touches 0 at T = 1 only (c = 0): T_s = 1 by the definition, but no enclosure can
+    // prove F ≤ 0 there — the scan must say so, not guess; F stays above 0 (c > 0): no event;
+    // F crosses (c < 0): T_s = 1 − √(−c), enclosed
+    assert!(
+        matches!(grazing(0.0), Verdict::Undecided(_)),
+        "a tangency was decided"
+    );
+    for c in [1e-300, 1e-30, 1e-12] {
+        assert!(
+            !matches!(grazing(c), Verdict::Found(_)),
+            "c = {c}: no separation exists"
+        );
+    }
+    for c in [-1e-6, -1e-2, -0.2] {
+        match grazing(c) {
+            Verdict::Found(ev) => {
+                let exact = Float::with_val(PREC, 1) - Float::with_val(PREC, -c).sqrt();
+                assert!(encloses(ev.ts, &exact), "c = {c}: {exact} ∉ {:?}", ev.ts);
+            }
+            Verdict::Undecided(t) => {
+                // allowed only for a near-tangency, and then T must hold the crossing
+                let exact = Float::with_val(PREC, 1) - Float::with_val(PREC, -c).sqrt();
+                assert!(
+                    c > -1e-3 && encloses(t, &exact),
+                    "c = {c}: undecided on {t:?}"
+                );
+            }
+            Verdict::Cleared => panic!("c = {c}: the crossing was cleared"),
+        }
+    }
+}
