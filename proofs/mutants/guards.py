@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Removes each soundness guard of the rigorous engine alone and runs the tests that must see it.
+
+Usage (from the repository root; a clean work tree): python3 proofs/mutants/guards.py [NAME...]
+Each mutation is applied to a copy of the tree in a temporary directory (the work tree is never
+changed), `cargo test --release` runs the named test targets there, and a line per guard says
+which tests failed. A guard whose removal leaves every test green is reported as SURVIVED and the
+script exits 1. The results are in proofs/MUTANTS.md.
+"""
+import os, re, shutil, subprocess, sys, tempfile, time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# the test targets that check enclosures (those present in this tree)
+TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
+                     if os.path.exists(os.path.join(ROOT, "tests", t + ".rs"))
+                     for a in ("--test", t)]
+
+# (name, file, [(exact text, replacement)], what it removes)
+GUARDS = [
+    ("apriori", "src/engines/taylor/step.rs",
+     [("            if subset(&ynew, &y) {", "            if true {")],
+     "the a-priori inclusion test of the Taylor step"),
+    ("picard", "src/engines/taylor/step.rs",
+     [("if ynew.iter().all(|c| c.is_common_interval()) && subset(&ynew, &y) {",
+       "if ynew.iter().all(|c| c.is_common_interval()) {")],
+     "the Picard inclusion test of the low-order step"),
+    ("q-inverse", "src/engines/taylor/lohner.rs", [("pt(r[i][j]) + ball", "pt(r[i][j])")],
+     "the error term of the enclosure of Q⁻¹ (Lohner)"),
+    ("newton", "src/engines/taylor/newton.rs",
+     [("        if n.interior(t) {", "        if true {")],
+     "interval Newton's existence proof N(T) ⊆ int T"),
+    ("ts-midpoint", "src/engines/taylor/event.rs",
+     [("Some(Some(ts)) => return self.found(ts),",
+       "Some(Some(ts)) => return self.found(point(ts.mid())),")],
+     "the T_s enclosure (collapsed to its midpoint)"),
+    ("kink-side", "src/engines/taylor/step.rs",
+     [("        let sd = if side[i] > 0 { d } else { -d };", "        let sd = d;")],
+     "the kink check's side (the rate of x_i instead of s·x_i)"),
+    ("kink-old", "src/engines/taylor/step.rs",
+     [("        if sd.inf() > 0.0 {", "        if (side[i] as f64) * d.inf() > 0.0 {"),
+      ("        if !(sd.sup() < 0.0) {", "        if (side[i] as f64) * d.sup() >= 0.0 {")],
+     "the kink check as it was before issue #12 (right for s = +1 only)"),
+    ("span", "src/engines/taylor/step.rs",
+     [("    (t1, span(super::flow::tau(point(t1), t0).sup()))",
+       "    (t1, span((t1 - t0).max(h)))")],
+     "the validated span's upper bound of t1 − t0"),
+]
+
+
+def run(name, path, edits, what):
+    tmp = tempfile.mkdtemp(prefix=f"bwcl-guard-{name}-")
+    try:
+        for entry in ["Cargo.toml", "Cargo.lock", "src", "tests", "benches", "proofs",
+                      "paper_repro", ".cargo"]:
+            src = os.path.join(ROOT, entry)
+            if os.path.isdir(src):
+                shutil.copytree(src, os.path.join(tmp, entry))
+            elif os.path.exists(src):
+                shutil.copy(src, tmp)
+        f = os.path.join(tmp, path)
+        text = open(f).read()
+        for old, new in edits:
+            if text.count(old) != 1:
+                return f"{name}: ERROR the guard's text occurs {text.count(old)} times in {path}"
+            text = text.replace(old, new)
+        open(f, "w").write(text)
+        env = dict(os.environ)
+        env.setdefault("CARGO_TARGET_DIR", os.path.join(ROOT, "target", "guard-mutants"))
+        t0 = time.time()
+        p = subprocess.run(["cargo", "test", "--release", "--no-fail-fast", *TESTS],
+                           cwd=tmp, env=env, capture_output=True, text=True)
+        out = p.stdout + p.stderr
+        failed = sorted(set(re.findall(r"^test (\S+) \.\.\. FAILED", out, re.M)))
+        dt = time.time() - t0
+        if "could not compile" in out:
+            return f"{name}: ERROR the mutant does not compile"
+        if failed:
+            return f"{name}: KILLED in {dt:.0f} s by {', '.join(failed)}  ({what})"
+        return f"{name}: SURVIVED ({what})"
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def main():
+    names = sys.argv[1:]
+    results = [run(*g) for g in GUARDS if not names or g[0] in names]
+    for r in results:
+        print(r)
+    sys.exit(1 if any("SURVIVED" in r or "ERROR" in r for r in results) else 0)
+
+
+if __name__ == "__main__":
+    main()
