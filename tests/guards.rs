@@ -10,6 +10,8 @@
 //! | interval Newton's existence proof N(T) ⊆ int T | `newton_claims_no_root_it_has_not_proved` |
 //! | the T_s enclosure | `harmonic_separation_encloses_pi_exactly` |
 //! | grazing: undecidable, never guessed | `a_grazing_event_is_undecided` |
+//! | which zero is a separation (F's while V > 0, V's while F < 0) | `separation_needs_both_conditions_at_once` |
+//! | the condition proved on a box (after an undecided stretch) | `the_condition_holds_only_when_both_parts_are_proved` |
 //!
 //! References are exact: rationals (the doubles' values) against MPFR at 256 bits.
 
@@ -265,18 +267,17 @@ fn harmonic_separation_encloses_pi_exactly() {
     );
 }
 
-/// s′ = 1 from s = 0, with the outputs F = (s − 1)² + c and V = 1: one Taylor piece over
-/// [0, 2], scanned for the event.
-fn grazing(c: f64) -> Verdict<1> {
-    let ci = point(c);
+/// s′ = 1 from s = 0, with the outputs F(s) and V(s) recorded by `outputs`: one Taylor piece
+/// over [0, 2], scanned for the event.
+fn scan_outputs(
+    outputs: impl FnOnce(
+        &bwcl::engines::taylor::tape::Rec<Interval>,
+    ) -> [bwcl::engines::taylor::tape::Rec<Interval>; 2],
+) -> Verdict<1> {
     let one = point(1.0);
     let tape = Tape::<Interval, 1>::record(|v| {
-        let d = v[0].shift(&-one);
-        vec![
-            v[0].scale(&point(0.0)).shift(&one),
-            (d.clone() * d).shift(&ci),
-            v[0].scale(&point(0.0)).shift(&one),
-        ]
+        let [f, vv] = outputs(&v[0]);
+        vec![v[0].scale(&point(0.0)).shift(&one), f, vv]
     });
     let tapes = Tapes::of(&tape);
     let mut ws = Workspaces::default();
@@ -297,6 +298,80 @@ fn grazing(c: f64) -> Verdict<1> {
     .expect("s′ = 1 steps exactly");
     assert_eq!(out.piece.t1(), 2.0);
     scan_piece(&tape, &mut Workspace::default(), &out.piece)
+}
+
+/// F = (s − 1)² + c, V = 1.
+fn grazing(c: f64) -> Verdict<1> {
+    scan_outputs(|s| {
+        let d = s.shift(&point(-1.0));
+        [
+            (d.clone() * d).shift(&point(c)),
+            s.scale(&point(0.0)).shift(&point(1.0)),
+        ]
+    })
+}
+
+/// F = a_f s + b_f, V = a_v s + b_v (affine in time).
+fn affine_event(f: (f64, f64), v: (f64, f64)) -> Verdict<1> {
+    scan_outputs(|s| {
+        [
+            s.scale(&point(f.0)).shift(&point(f.1)),
+            s.scale(&point(v.0)).shift(&point(v.1)),
+        ]
+    })
+}
+
+#[test]
+fn separation_needs_both_conditions_at_once() {
+    // T_s = inf{T : F ≤ 0 ∧ V ≥ 0}, exact for affine outputs: a zero of F while V < 0, or of V
+    // while F > 0, is not a separation
+    let exact = |x: f64| Rational::from_f64(x).unwrap();
+    let cases: [((f64, f64), (f64, f64), Option<Rational>); 10] = [
+        // the condition holds from the start: T_s = 0 (F increasing through 0 later, V > 0: its
+        // zero is where the condition ends, not where it starts)
+        ((1.0, -0.6), (0.0, 1.0), Some(exact(0.0))),
+        // F ≡ 0 with V > 0, and V ≡ 0 with F < 0: both hold at once from the start (F ≤ 0 and
+        // V ≥ 0 are not strict)
+        ((0.0, 0.0), (0.0, 1.0), Some(exact(0.0))),
+        ((0.0, -1.0), (0.0, 0.0), Some(exact(0.0))),
+        // F ≡ −1 and V increasing through 0 at 1.3: T_s = 1.3, not the start
+        ((0.0, -1.0), (1.0, -1.3), Some(exact(1.3))),
+        // F crosses at 1 while V = −1: never
+        ((-1.0, 1.0), (0.0, -1.0), None),
+        // F ≤ 0 from 1, V ≥ 0 from 1.3: T_s = 1.3 (V's zero, F < 0 there)
+        ((-1.0, 1.0), (1.0, -1.3), Some(exact(1.3))),
+        // V ≥ 0 from 0.7, F ≤ 0 from 1.3: T_s = 1.3 (F's zero, V > 0 there)
+        ((-1.0, 1.3), (1.0, -0.7), Some(exact(1.3))),
+        // F ≤ 0 from 0.6, V ≥ 0 until 1.7: T_s = 0.6
+        ((-1.0, 0.6), (-1.0, 1.7), Some(exact(0.6))),
+        // F ≤ 0 until 0.6, V ≥ 0 from 0.3: T_s = 0.3 (V's zero)
+        ((1.0, -0.6), (1.0, -0.3), Some(exact(0.3))),
+        // F ≤ 0 until 0.3, V ≥ 0 from 0.6: never
+        ((1.0, -0.3), (1.0, -0.6), None),
+    ];
+    for (f, v, ts) in cases {
+        // the zero of a s + b is −b/a (exact: a = ±1)
+        match (affine_event(f, v), ts) {
+            (Verdict::Found(ev), Some(ts)) => {
+                let (lo, hi) = (exact(ev.ts.inf()), exact(ev.ts.sup()));
+                assert!(
+                    lo <= ts && ts <= hi,
+                    "F {f:?}, V {v:?}: {:?} misses {}",
+                    ev.ts,
+                    ts.to_f64()
+                );
+                assert!(ev.ts.wid() < 1e-12, "F {f:?}, V {v:?}: {:?}", ev.ts);
+            }
+            (Verdict::Found(ev), None) => {
+                panic!("F {f:?}, V {v:?}: no separation, found {:?}", ev.ts)
+            }
+            (Verdict::Undecided(t), _) => panic!("F {f:?}, V {v:?}: undecided on {t:?}"),
+            (Verdict::Cleared, Some(ts)) => {
+                panic!("F {f:?}, V {v:?}: T_s = {} cleared", ts.to_f64())
+            }
+            (Verdict::Cleared, None) => {}
+        }
+    }
 }
 
 #[test]
@@ -331,4 +406,29 @@ fn a_grazing_event_is_undecided() {
             Verdict::Cleared => panic!("c = {c}: the crossing was cleared"),
         }
     }
+}
+
+#[test]
+fn the_condition_holds_only_when_both_parts_are_proved() {
+    // `holds` (used once T_s was left undecided) on boxes of (F, V): both F ≤ 0 and V ≥ 0 must
+    // be proved on the whole box
+    let tape = Tape::<Interval, 2>::record(|v| {
+        let zero = point(0.0);
+        vec![
+            v[0].scale(&zero),
+            v[1].scale(&zero),
+            v[0].clone(),
+            v[1].clone(),
+        ]
+    });
+    let holds = |f: (f64, f64), v: (f64, f64)| {
+        bwcl::engines::taylor::event::holds(&tape, &[iv(f.0, f.1), iv(v.0, v.1)])
+    };
+    assert!(holds((-1.0, 0.0), (0.0, 1.0)));
+    assert!(holds((-1.0, -0.5), (0.5, 1.0)));
+    assert!(!holds((-1.0, 1e-300), (0.5, 1.0)), "F may be > 0");
+    assert!(!holds((-1.0, -0.5), (-1e-300, 1.0)), "V may be < 0");
+    assert!(!holds((0.5, 1.0), (0.5, 1.0)), "F > 0");
+    assert!(!holds((-1.0, -0.5), (-1.0, -0.5)), "V < 0");
+    assert!(!holds((0.5, 1.0), (-1.0, -0.5)), "neither");
 }
