@@ -353,6 +353,20 @@ fn outside(x: &Rational, iv: Interval) -> Option<String> {
     None
 }
 
+/// How many doubles lie strictly between `x` and the nearer bound of `iv`, up to 64.
+fn margin_ulps(x: &Rational, iv: Interval) -> u32 {
+    let (mut lo, mut hi) = (iv.inf(), iv.sup());
+    for n in 0..64 {
+        (lo, hi) = (lo.next_up(), hi.next_down());
+        let below = Rational::from_f64(lo).is_some_and(|b| b < *x);
+        let above = Rational::from_f64(hi).is_some_and(|b| b > *x);
+        if !(below && above) {
+            return n;
+        }
+    }
+    64
+}
+
 /// Checks every reference of `group`; returns the failures.
 fn check_group(group: &str) -> Vec<String> {
     let refs: Vec<Reference> = references()
@@ -361,6 +375,8 @@ fn check_group(group: &str) -> Vec<String> {
         .collect();
     assert!(!refs.is_empty(), "no {group} references");
     let mut fails = Vec::new();
+    let mut min_margin = u32::MAX;
+    let mut min_frac = f64::INFINITY;
     for r in &refs {
         let tag = format!("{} {} v0={:?}", r.model.name(), r.params, r.v0);
         match prove(r) {
@@ -369,11 +385,28 @@ fn check_group(group: &str) -> Vec<String> {
                 for (name, x, iv) in [("T_s", &r.ts, ts), ("e", &r.e, e)] {
                     if let Some(why) = outside(x, iv) {
                         fails.push(format!("{tag}: {name}: {why}"));
+                    } else {
+                        min_margin = min_margin.min(margin_ulps(x, iv));
+                        let (lo, hi) = (
+                            Rational::from_f64(iv.inf()).unwrap(),
+                            Rational::from_f64(iv.sup()).unwrap(),
+                        );
+                        let w = Rational::from(&hi - &lo);
+                        let d = Rational::from(x - &lo).min(Rational::from(&hi - x));
+                        min_frac = min_frac.min((d / w).to_f64());
                     }
                 }
             }
         }
     }
+    eprintln!(
+        "{} {group} cases, {} failures; smallest margin from a reference to a bound: {} doubles \
+         (64: ≥ 64), {:.3} of the enclosure's width",
+        refs.len(),
+        fails.len(),
+        min_margin,
+        min_frac
+    );
     fails
 }
 
