@@ -539,7 +539,7 @@ pub fn solve(kind: Kind, prm: &Params, set: Setting, extra: Extra) -> Outcome {
             let h = Float::with_val(prec, &tc + &delta);
             let s1 = euler(&s, &h);
             let (f1, v1) = run.force_velocity(&s1);
-            if f1 <= 0 && v1 >= 0 || (f0 > 0 && f1 <= 0) {
+            if f1 <= 0 && (v1 >= 0 || f0 > 0) {
                 assert!(
                     extra.event_at_crossing,
                     "the separation event falls in a crossing step at T = {t}: not supported"
