@@ -259,7 +259,7 @@ pub struct FitArgs {
     pub data: PathBuf,
     /// Random starts (seeded), 0 ≤ N ≤ 256; 0 is allowed with --init. 4 fit 20 speeds to the
     /// noise level in about 12 s on a 2-core machine; more starts map the non-uniqueness of P*.
-    #[arg(long, value_name = "N", default_value_t = 4, allow_negative_numbers = true,
+    #[arg(long, value_name = "N", default_value_t = 4, allow_hyphen_values = true,
           value_parser = count(STARTS))]
     pub starts: usize,
     /// Seed of the random starts, 0 ≤ S < 2^64 (the same seed gives the same result).
@@ -267,11 +267,11 @@ pub struct FitArgs {
         long,
         value_name = "S",
         default_value_t = 1,
-        allow_negative_numbers = true
+        allow_hyphen_values = true
     )]
     pub seed: u64,
     /// Nelder–Mead iterations per run, 1 ≤ M ≤ 10000 (each start runs once and restarts once).
-    #[arg(long, value_name = "M", default_value_t = 300, allow_negative_numbers = true,
+    #[arg(long, value_name = "M", default_value_t = 300, allow_hyphen_values = true,
           value_parser = RangedU64ValueParser::<u64>::new().range(MAX_ITER))]
     pub max_iter: u64,
     /// An extra start: a base set P* = B,Γ,κ,σ_b,n,p (e.g. a published set to refine).
@@ -349,25 +349,25 @@ pub struct ParamArgs {
 pub struct EngineArgs {
     /// Nondimensional time after which "no separation" is reported (T_s = +∞ as far as the
     /// integration went), 0 < T ≤ 1e6.
-    #[arg(long, value_name = "T", default_value_t = 100.0, allow_negative_numbers = true,
+    #[arg(long, value_name = "T", default_value_t = 100.0, allow_hyphen_values = true,
           value_parser = time)]
     pub horizon: f64,
 
     /// DOP853 relative tolerance, 100 ε ≤ RTOL < 1 (100 ε ≈ 2.2e-14) [default: 1e-10, the
     /// paper's].
     #[arg(long, value_name = "RTOL", conflicts_with = "rigorous",
-          allow_negative_numbers = true, value_parser = rtol)]
+          allow_hyphen_values = true, value_parser = rtol)]
     pub rtol: Option<f64>,
 
     /// DOP853 absolute tolerance, 0 < ATOL ≤ 1 [default: 1e-12, the paper's].
     #[arg(long, value_name = "ATOL", conflicts_with = "rigorous",
-          allow_negative_numbers = true, value_parser = atol)]
+          allow_hyphen_values = true, value_parser = atol)]
     pub atol: Option<f64>,
 
     /// DOP853 largest step, nondimensional, H ≥ 1e-9 (inf: no limit) [default: 1e-2, the
     /// paper's]. At most 10⁶ steps are taken per case.
     #[arg(long, value_name = "H", conflicts_with = "rigorous",
-          allow_negative_numbers = true, value_parser = max_step)]
+          allow_hyphen_values = true, value_parser = max_step)]
     pub max_step: Option<f64>,
 
     /// Prove enclosures of T_s and e with the interval Taylor engine (parameters are enclosed
@@ -376,13 +376,13 @@ pub struct EngineArgs {
     pub rigorous: bool,
 
     /// Taylor order of the rigorous engine, 2 ≤ K ≤ 40 [default: 16]. Needs --rigorous.
-    #[arg(long, value_name = "K", requires = "rigorous", allow_negative_numbers = true,
+    #[arg(long, value_name = "K", allow_hyphen_values = true,
           value_parser = count(ORDER))]
     pub order: Option<usize>,
     /// With --rigorous and a range of v0 (a..b): how many sub-ranges to prove, 1 ≤ N ≤ 1024
     /// (the widest or unproved one is split first); the result is their hull, valid for every
     /// v0 in a..b [default: 32]. Needs --rigorous.
-    #[arg(long, value_name = "N", requires = "rigorous", allow_negative_numbers = true,
+    #[arg(long, value_name = "N", allow_hyphen_values = true,
           value_parser = count(PIECES))]
     pub pieces: Option<usize>,
 }
@@ -413,13 +413,13 @@ pub struct TrajectoryArgs {
     pub engine: EngineArgs,
     /// Number of uniform sample times, 2 ≤ N ≤ 100000, the first at 0 and the last at the end
     /// time.
-    #[arg(long, value_name = "N", default_value_t = 1000, allow_negative_numbers = true,
+    #[arg(long, value_name = "N", default_value_t = 1000, allow_hyphen_values = true,
           value_parser = count(POINTS))]
     pub points: usize,
     /// End time T (nondimensional), 0 < T ≤ 1e6 [default: T_s, or the horizon without
     /// separation; with --rigorous the upper bound of T_s, and T may go up to the end of the
     /// proved flow].
-    #[arg(long, value_name = "T", allow_negative_numbers = true, value_parser = time)]
+    #[arg(long, value_name = "T", allow_hyphen_values = true, value_parser = time)]
     pub t_end: Option<f64>,
     /// With --physical: t in s, x in m, v in m/s, F in N (loop: x_mm = |x| in mm, F_N in N);
     /// the model's states stay nondimensional.

@@ -85,9 +85,15 @@ pub fn note(line: &str) {
 /// Help and version go to stdout (exit 0); a usage error becomes one line (exit 2).
 fn clap_error(e: clap::Error) -> i32 {
     match e.kind() {
-        ErrorKind::DisplayHelp
-        | ErrorKind::DisplayVersion
-        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            report("a subcommand is needed: cor, trajectory, loop, fit or cost (see --help)");
+            EXIT_BAD_INPUT
+        }
+        ErrorKind::InvalidUtf8 => {
+            report(&invalid_utf8());
+            EXIT_BAD_INPUT
+        }
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
             // not e.print(): a closed stdout must not turn --help into an error
             let text = e.render().to_string();
             let _ = std::io::stdout().lock().write_all(text.as_bytes());
@@ -97,6 +103,22 @@ fn clap_error(e: clap::Error) -> i32 {
             report(&one_line(&escape_values(&e)));
             EXIT_BAD_INPUT
         }
+    }
+}
+
+/// Which argument is not UTF-8 (clap does not say): the first such, after the option it
+/// follows.
+fn invalid_utf8() -> String {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    let Some(i) = args.iter().position(|a| a.to_str().is_none()) else {
+        return "an argument is not valid UTF-8".into();
+    };
+    let shown = echo(&args[i].to_string_lossy());
+    match i.checked_sub(1).and_then(|j| args[j].to_str()) {
+        Some(opt) if opt.starts_with("--") => {
+            format!("the value '{shown}' of {} is not valid UTF-8", echo(opt))
+        }
+        _ => format!("the argument '{shown}' is not valid UTF-8"),
     }
 }
 
