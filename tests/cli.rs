@@ -760,6 +760,19 @@ fn out_is_kept_on_failure_and_written_through_links() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(long.is_file());
+    // a name the file system refuses is found before the computation, in one line
+    let too_long = dir.join("l".repeat(300));
+    let err = assert_bad_input(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--timing",
+        "--out",
+        too_long.to_str().unwrap(),
+    ]);
+    assert!(err.contains("255 bytes"), "{err}");
     for f in [&out, &target, &link, &long] {
         let _ = std::fs::remove_file(f);
     }

@@ -80,21 +80,26 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
             elapsed,
         )
     };
-    if a.timing {
-        let s = elapsed.as_secs_f64();
-        note(&format!(
-            "bwcl: timing: {total} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s))",
-            s / total.max(1) as f64 * 1e6,
-            rayon::current_num_threads()
-        ));
-    }
+    // notes only after the output is written: an error must stay the one stderr line
+    let timing = || {
+        if a.timing {
+            let s = elapsed.as_secs_f64();
+            note(&format!(
+                "bwcl: timing: {total} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s))",
+                s / total.max(1) as f64 * 1e6,
+                rayon::current_num_threads()
+            ));
+        }
+    };
     if failed == 0 {
         output::emit(a.out.as_deref(), &bytes)?;
+        timing();
         return Ok(EXIT_OK);
     }
     // --out is replaced only when everything succeeded: the rows (with the reasons) go to
     // stdout instead
     output::emit(None, &bytes)?;
+    timing();
     let what = if a.engine.rigorous {
         "not proved"
     } else {
@@ -224,8 +229,9 @@ enum Curve {
     Loop,
 }
 
-/// A CSV: the header and the rows, already formatted.
-type Csv = (Vec<String>, Vec<Vec<String>>);
+/// A CSV: the header and the rows, already formatted, and a note for stderr (written after
+/// the CSV).
+type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
 
 fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
@@ -237,7 +243,7 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
                 .into(),
         ));
     }
-    let (head, rows) = if a.engine.rigorous {
+    let (head, rows, remark) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let case = input::single_case::<Interval>(&a.params)?;
         with_model!(kind, case.params, |m| rigorous_curve(
@@ -257,6 +263,9 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     let head: Vec<&str> = head.iter().map(String::as_str).collect();
     let bytes = output::csv(&head, rows)?;
     output::emit(a.out.as_deref(), &bytes)?;
+    if let Some(r) = remark {
+        note(&r);
+    }
     Ok(EXIT_OK)
 }
 
@@ -270,12 +279,13 @@ fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
     what: Curve,
 ) -> Result<Csv, CliError> {
     let failed = |e: bwcl::observables::ImpactError| CliError::Failed(e.to_string());
+    let mut remark = None;
     let end = match t_end {
         Some(t) => t,
         None => match impact(model, opts).map_err(failed)?.ts {
             Some(ts) => ts,
             None => {
-                note(&format!(
+                remark = Some(format!(
                     "bwcl: note: no separation before the horizon T = {}; the samples end there",
                     num(opts.horizon)
                 ));
@@ -316,7 +326,7 @@ fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
                 .collect(),
         ),
     };
-    Ok((head, rows))
+    Ok((head, rows, remark))
 }
 
 /// Samples of the proved flow: the enclosure of every column at each grid time.
@@ -376,5 +386,5 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
         }
         rows.push(r);
     }
-    Ok((head, rows))
+    Ok((head, rows, None))
 }

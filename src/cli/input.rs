@@ -328,6 +328,12 @@ pub fn out_path(out: Option<&Path>) -> Result<(), CliError> {
         )));
     }
     let target = resolve_links(path)?;
+    // NAME_MAX of Linux and most file systems: found now, not after the computation
+    if target.file_name().is_some_and(|n| n.len() > 255) {
+        return Err(CliError::Input(format!(
+            "--out '{shown}': the file name is longer than 255 bytes"
+        )));
+    }
     if target.exists() && !target.is_file() {
         return Err(CliError::Input(format!(
             "--out '{shown}' is not a regular file (it would not be replaced)"
