@@ -225,3 +225,42 @@ fn check_pair(v: f64, e: f64) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn echo_escapes_control_characters_and_shortens() {
+        assert_eq!(echo("1.5"), "1.5");
+        assert_eq!(echo("a\nb\t\u{1b}[2J\0\u{85}"), r"a\nb\t\x1b[2J\0\u{85}");
+        let cut = echo(&"9".repeat(1000));
+        assert_eq!(cut.chars().count(), ECHO_CHARS);
+        assert!(cut.ends_with('…'));
+        // exactly the limit: no ellipsis
+        assert_eq!(echo(&"9".repeat(ECHO_CHARS)), "9".repeat(ECHO_CHARS));
+    }
+
+    #[test]
+    fn header_with_a_bom_is_read_and_a_repeated_column_refused() {
+        let d = CorData::parse("\u{feff}v0,e\n1,0.5\n").unwrap();
+        assert_eq!((d.v0.clone(), d.e.clone()), (vec![1.0], vec![0.5]));
+        for h in ["v0,e,e", "v0,v_0,e", "e,cor,v0", "v0,e,x,x"] {
+            let err = CorData::parse(&format!("{h}\n1,0.5,0.5,1\n")).unwrap_err();
+            assert!(err.0.contains("twice"), "{h}: {err}");
+        }
+    }
+
+    #[test]
+    fn long_lines_and_too_many_rows_are_refused() {
+        let err = CorData::parse(&format!("v0,e{}\n1,0.5\n", "x".repeat(5000))).unwrap_err();
+        assert!(
+            err.0.contains("1000 characters") && err.0.len() < 200,
+            "{err}"
+        );
+        let rows = format!("v0,e\n{}", "1,0.5\n".repeat(MAX_ROWS));
+        assert_eq!(CorData::parse(&rows).unwrap().len(), MAX_ROWS);
+        let err = CorData::parse(&format!("{rows}1,0.5\n")).unwrap_err();
+        assert!(err.0.contains("rows"), "{err}");
+    }
+}
