@@ -475,3 +475,410 @@ fn rigorous_trajectory_encloses_or_fails_cleanly() {
         c => panic!("exit code {c:?}: {}", stderr(&o)),
     }
 }
+
+/// Runs with stdin closed and a timeout; `None` when the run had to be killed.
+fn bwcl_within(args: &[&str], secs: u64) -> Option<Output> {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_bwcl"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("bwcl runs");
+    let start = std::time::Instant::now();
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            return Some(child.wait_with_output().unwrap());
+        }
+        if start.elapsed().as_secs() >= secs {
+            let _ = child.kill();
+            let _ = child.wait();
+            return None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn every_numeric_option_has_a_range_and_its_name_in_the_error() {
+    let huge = "18446744073709551615";
+    let cor = ["cor", "--model", "shc", "--nd", DSS];
+    let rig = ["cor", "--model", "shc", "--nd", DSS, "--rigorous"];
+    let range = [
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        DSS,
+        "--v0",
+        "0.9..1.1",
+        "--rigorous",
+    ];
+    let traj = ["trajectory", "--model", "shc", "--nd", DSS];
+    let cases: Vec<(Vec<&str>, &str, Vec<&str>)> = vec![
+        (
+            rig.to_vec(),
+            "--order",
+            vec![huge, "-1", "0", "1", "41", "1000", "2.5", "x"],
+        ),
+        (range.to_vec(), "--pieces", vec![huge, "0", "-1", "1025"]),
+        (
+            traj.to_vec(),
+            "--points",
+            vec![huge, "1000000000", "100001", "1", "-3"],
+        ),
+        (
+            traj.to_vec(),
+            "--t-end",
+            vec!["-1", "0", "1e300", "inf", "nan", "1e7"],
+        ),
+        (
+            cor.to_vec(),
+            "--horizon",
+            vec!["-1", "0", "1e7", "inf", "nan"],
+        ),
+        (cor.to_vec(), "--atol", vec!["0", "-1e-12", "2", "nan"]),
+        (cor.to_vec(), "--rtol", vec!["0", "1", "1e-20", "-1"]),
+        (cor.to_vec(), "--max-step", vec!["0", "-1", "1e-300", "nan"]),
+    ];
+    for (base, opt, values) in cases {
+        for v in values {
+            let mut args = base.clone();
+            args.extend([opt, v]);
+            let err = assert_bad_input(&args);
+            assert!(err.contains(opt), "{args:?}: {err}");
+        }
+    }
+    let data = scratch("range.csv");
+    std::fs::write(&data, "v0,e\n1,0.8\n").unwrap();
+    let d = data.to_str().unwrap();
+    for (opt, v) in [
+        ("--starts", "-1"),
+        ("--starts", "257"),
+        ("--starts", huge),
+        ("--max-iter", "0"),
+        ("--max-iter", "10001"),
+        ("--seed", "-1"),
+    ] {
+        let err = assert_bad_input(&["fit", "--model", "shc", "--data", d, opt, v]);
+        assert!(err.contains(opt), "{opt} {v}: {err}");
+    }
+    // an option of the rigorous engine is refused without it, whatever else is given
+    for extra in [&["--order", "5"][..], &["--pieces", "4"]] {
+        for more in [&[][..], &["--rtol", "1e-8"], &["--atol", "1e-9"]] {
+            let mut args = cor.to_vec();
+            args.extend(extra);
+            args.extend(more);
+            let err = assert_bad_input(&args);
+            assert!(err.contains(extra[0]), "{args:?}: {err}");
+        }
+    }
+}
+
+#[test]
+fn help_documents_every_numeric_range() {
+    for (cmd, wanted) in [
+        (
+            "cor",
+            &[
+                "0 < T ≤ 1e6",
+                "2 ≤ K ≤ 40",
+                "1 ≤ N ≤ 1024",
+                "0 < ATOL ≤ 1",
+                "H ≥ 1e-9",
+            ][..],
+        ),
+        (
+            "trajectory",
+            &["2 ≤ N ≤ 100000", "0 < T ≤ 1e6", "2 ≤ K ≤ 40"],
+        ),
+        ("loop", &["2 ≤ N ≤ 100000"]),
+        (
+            "fit",
+            &["0 ≤ N ≤ 256", "1 ≤ M ≤ 10000", "4 MiB", "10000 data rows"],
+        ),
+        ("cost", &["4 MiB"]),
+    ] {
+        let o = bwcl(&[cmd, "--help"]);
+        let text = stdout(&o);
+        for w in wanted {
+            assert!(text.contains(w), "{cmd} --help lacks {w:?}");
+        }
+    }
+}
+
+#[test]
+fn messages_echo_what_was_written_escaped_and_short() {
+    let nd = |set: &str, rigorous: bool| {
+        let mut args = vec!["cor", "--model", "shc", "--nd", set];
+        if rigorous {
+            args.push("--rigorous");
+        }
+        assert_bad_input(&args)
+    };
+    // all digits of 1e300 once made a 301-digit line
+    let err = nd("1e300,1e300,0.5,1,1,1", false);
+    assert!(
+        err.contains("Γ = 1e300 must lie in (−B, B) = (-1e300, 1e300)"),
+        "{err}"
+    );
+    assert!(err.chars().count() < 120, "{err}");
+    // the token as written, not a rounded double that contradicts it
+    let err = nd("1,-0.9999999999999999,0.5,1,1,1", true);
+    assert!(
+        err.contains("Γ = -0.9999999999999999 (enclosed in [-1, "),
+        "{err}"
+    );
+    let err = nd("4.9e-324,0,0.5,1,1,1", true);
+    assert!(
+        err.contains("B = 4.9e-324 (enclosed in [0, 5e-324]) must be > 0"),
+        "{err}"
+    );
+    // control characters escaped, long tokens cut
+    let err = nd("1\u{1b}[31m,0,0.5,1,1,1", false);
+    assert!(
+        err.contains(r"'1\x1b[31m'") && !err.contains('\u{1b}'),
+        "{err}"
+    );
+    let err = nd("1,0,0.5,1,1,1\n\nx", false);
+    assert!(err.contains(r"'1\n\nx'"), "{err}");
+    let long = "7".repeat(5000);
+    let err = nd(&format!("{long},0,0.5,1,1,1"), false);
+    assert!(err.contains('…') && err.chars().count() < 200, "{err}");
+    // the same in clap's own messages (whose Display strips escape sequences)
+    let err = assert_bad_input(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--horizon",
+        "\u{1b}[2J",
+    ]);
+    assert!(
+        err.contains(r"'\x1b[2J'") && err.contains("--horizon"),
+        "{err}"
+    );
+    let err = assert_bad_input(&["cor", "--model", "shc", "--nd", DSS, "--horizon", &long]);
+    assert!(err.contains('…') && err.chars().count() < 200, "{err}");
+    let err = assert_bad_input(&["cor", "--model", "shc", "--nd", DSS, "--bogus\n\nx"]);
+    assert!(err.contains(r"--bogus\n\nx"), "{err}");
+}
+
+#[test]
+fn errors_to_a_closed_stderr_still_exit_two() {
+    use std::process::Stdio;
+    // a pipe whose reader is gone before bwcl writes (`… 2>&1 | head -0`)
+    for args in [
+        &["cor", "--model", "shc", "--nd", DSS, "--order", "-1"][..],
+        &["cor", "--model", "shc", "--nd", "0,0,0.5,0,1,1"],
+        &["cor", "--model", "shc", "--nd", DSS, "--bogus"],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let status = Command::new(env!("CARGO_BIN_EXE_bwcl"))
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(writer)
+            .status()
+            .unwrap();
+        assert_eq!(status.code(), Some(2), "{args:?}");
+        // stdout closed too
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let (r2, w2) = std::io::pipe().unwrap();
+        drop(r2);
+        let status = Command::new(env!("CARGO_BIN_EXE_bwcl"))
+            .args(args)
+            .stdout(w2)
+            .stderr(writer)
+            .status()
+            .unwrap();
+        assert_eq!(status.code(), Some(2), "{args:?}");
+    }
+}
+
+#[test]
+fn out_is_kept_on_failure_and_written_through_links() {
+    // a case the rigorous engine cannot prove at order 2: exit 1, --out untouched
+    let out = scratch("kept.txt");
+    std::fs::write(&out, "before\n").unwrap();
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--rigorous",
+        "--order",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "before\n");
+    assert!(stdout(&o).contains("shc") && stderr(&o).contains("left unchanged"));
+    // a symbolic link stays a link; its target gets the output
+    let target = scratch("target.csv");
+    let link = scratch("link.csv");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--format",
+        "csv",
+        "--out",
+        link.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert!(
+        std::fs::read_to_string(&target)
+            .unwrap()
+            .starts_with("model,")
+    );
+    // a name of 247 characters (the temporary file's name must not add to it)
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let long = dir.join("l".repeat(247));
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--out",
+        long.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(long.is_file());
+    // a name the file system refuses is found before the computation, in one line
+    let too_long = dir.join("l".repeat(300));
+    let err = assert_bad_input(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--timing",
+        "--out",
+        too_long.to_str().unwrap(),
+    ]);
+    assert!(err.contains("255 bytes"), "{err}");
+    for f in [&out, &target, &link, &long] {
+        let _ = std::fs::remove_file(f);
+    }
+}
+
+#[test]
+fn data_files_are_read_bounded_with_a_bom_and_no_repeated_column() {
+    let cost = |file: &std::path::Path| -> Output {
+        bwcl_within(
+            &[
+                "cost",
+                "--model",
+                "shc",
+                "--base",
+                DSS,
+                "--data",
+                file.to_str().unwrap(),
+            ],
+            20,
+        )
+        .expect("cost finishes within 20 s")
+    };
+    let bom = scratch("bom.csv");
+    std::fs::write(&bom, "\u{feff}v0,e\n1,0.85\n").unwrap();
+    let o = cost(&bom);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let dup = scratch("dup.csv");
+    for header in ["v0,e,e", "v0,v_0,e", "e,v0,cor", "v0,e,x,x"] {
+        std::fs::write(&dup, format!("{header}\n1,0.85,0.85,1\n")).unwrap();
+        let o = cost(&dup);
+        assert_eq!(o.status.code(), Some(2), "{header}: {}", stderr(&o));
+        assert!(stderr(&o).contains("twice"), "{header}: {}", stderr(&o));
+    }
+    let o = cost(std::path::Path::new("/dev/zero"));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("MiB"), "{}", stderr(&o));
+    let big = scratch("big.csv");
+    std::fs::write(&big, format!("v0,e{}\n1,0.5\n", "x".repeat(50 << 20))).unwrap();
+    let o = cost(&big);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).len() < 300, "{}", stderr(&o));
+    let long = scratch("long.csv");
+    std::fs::write(&long, format!("v0,e\n1,0.5{}\n", " ".repeat(2000))).unwrap();
+    let o = cost(&long);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("1000 characters"));
+    let rows = scratch("rows.csv");
+    std::fs::write(&rows, format!("v0,e\n{}", "1,0.5\n".repeat(10_001))).unwrap();
+    let o = cost(&rows);
+    assert!(
+        o.status.code() == Some(2) && stderr(&o).contains("rows"),
+        "{}",
+        stderr(&o)
+    );
+    for f in [&bom, &dup, &big, &long, &rows] {
+        let _ = std::fs::remove_file(f);
+    }
+}
+
+#[test]
+fn a_fit_from_an_extreme_start_is_bounded() {
+    // each CoR took up to 10⁶ DOP853 steps: 266 s before the step cap of fit
+    let data = scratch("extreme.csv");
+    std::fs::write(&data, "v0,e\n0.5,0.9\n1,0.85\n2,0.8\n").unwrap();
+    let init = "1.797e308,0,0.5,1,1,1.5";
+    let start = std::time::Instant::now();
+    let o = bwcl_within(
+        &[
+            "fit",
+            "--model",
+            "shc",
+            "--data",
+            data.to_str().unwrap(),
+            "--init",
+            init,
+            "--starts",
+            "0",
+        ],
+        60,
+    )
+    .expect("the fit finishes within 60 s");
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(start.elapsed().as_secs() < 60);
+    let _ = std::fs::remove_file(&data);
+}
+
+#[test]
+fn a_cor_near_one_at_tiny_speed_is_below_one() {
+    // reported as e = 1.0000000001539 by the float engine; the proof puts e below 1 by 3.6e-11
+    let base = "1.3410e-01,3.3033e-02,0.0775957,0.05451325710113047,2.04453,1.58833";
+    let rows = json(&[
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        base,
+        "--v0",
+        "1e-9",
+        "--rigorous",
+        "--format",
+        "json",
+    ]);
+    let e_hi = rows[0]["e"][1].as_f64().unwrap();
+    assert!(e_hi < 1.0 - 1e-11, "{e_hi}");
+    let rows = json(&[
+        "cor", "--model", "shc", "--base", base, "--v0", "1e-9", "--format", "json",
+    ]);
+    let e = rows[0]["e"].as_f64().unwrap();
+    assert!(e <= 1.0 && (e - e_hi).abs() < 1e-9, "{e}");
+}

@@ -1,9 +1,84 @@
 //! The command line: clap definitions and the long help texts.
 
-use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::ModelKind;
+use clap::builder::RangedU64ValueParser;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
+use std::ops::RangeInclusive;
 use std::path::PathBuf;
+
+/// Taylor orders of the rigorous engine: below 2 it cannot step; each order costs O(K²) per
+/// step, and past 40 the steps stop growing (the default 16 measured fastest).
+pub const ORDER: RangeInclusive<u64> = 2..=40;
+/// Sub-ranges of a v0 range (each a proof: some 40 ms on the DSS set).
+pub const PIECES: RangeInclusive<u64> = 1..=1024;
+/// Sample times of `trajectory` and `loop`.
+pub const POINTS: RangeInclusive<u64> = 2..=100_000;
+/// Random starts of `fit` (each about 3 s on 20 speeds).
+pub const STARTS: RangeInclusive<u64> = 0..=256;
+/// Nelder–Mead iterations per run of `fit`.
+pub const MAX_ITER: RangeInclusive<u64> = 1..=10_000;
+/// Largest --horizon and --t-end (nondimensional time; the engines cap their steps too).
+pub const T_MAX: f64 = 1e6;
+/// Smallest --max-step of DOP853 (its 10⁶ steps then cover T = 10⁻³).
+pub const MIN_MAX_STEP: f64 = 1e-9;
+
+/// A decimal (no NaN) as clap reads an option value.
+fn decimal(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|x| !x.is_nan())
+        .ok_or_else(|| "not a decimal number".to_string())
+}
+
+/// --horizon and --t-end: (0, T_MAX].
+fn time(s: &str) -> Result<f64, String> {
+    let t = decimal(s)?;
+    if t > 0.0 && t <= T_MAX {
+        Ok(t)
+    } else {
+        Err(format!("must be a number in (0, {T_MAX:e}]"))
+    }
+}
+
+/// --rtol: [100 ε, 1).
+fn rtol(s: &str) -> Result<f64, String> {
+    let r = decimal(s)?;
+    if (100.0 * f64::EPSILON..1.0).contains(&r) {
+        Ok(r)
+    } else {
+        Err(format!(
+            "must be a number in [100 ε, 1) = [{:e}, 1)",
+            100.0 * f64::EPSILON
+        ))
+    }
+}
+
+/// --atol: (0, 1]. DOP853 scales the error of a component by atol + rtol·|y|, which is 0 for
+/// a component at 0 (the states start there) when atol = 0.
+fn atol(s: &str) -> Result<f64, String> {
+    let a = decimal(s)?;
+    if a > 0.0 && a <= 1.0 {
+        Ok(a)
+    } else {
+        Err("must be a number in (0, 1]".into())
+    }
+}
+
+/// --max-step: [MIN_MAX_STEP, ∞].
+fn max_step(s: &str) -> Result<f64, String> {
+    let h = decimal(s)?;
+    if h >= MIN_MAX_STEP {
+        Ok(h)
+    } else {
+        Err(format!("must be a number ≥ {MIN_MAX_STEP:e} (or inf)"))
+    }
+}
+
+/// A whole number in `range`, as usize.
+fn count(range: RangeInclusive<u64>) -> RangedU64ValueParser<usize> {
+    RangedU64ValueParser::<usize>::new().range(range)
+}
 
 const ABOUT: &str =
     "Separation time T_s and coefficient of restitution e of the Bouc–Wen collision models";
@@ -93,7 +168,9 @@ macro_rules! fit_examples {
     () => {
         "
 DATA: a CSV file with a header naming the columns v0 (impact speed, m/s, > 0) and e (CoR in
-[0, 1]); other columns are ignored, blank lines and lines starting with # are skipped.
+[0, 1]); other columns are ignored (no column may be named twice), blank lines and lines
+starting with # are skipped, a UTF-8 byte-order mark is allowed. At most 4 MiB, lines of at
+most 1000 characters, at most 10000 data rows.
 
 EXAMPLES:
     bwcl fit --model shc --data paper_repro/data/synthetic_dss.csv --seed 1
@@ -180,15 +257,22 @@ pub struct FitArgs {
     /// The measured data: CSV with the header v0,e.
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
-    /// Random starts (seeded); 0 is allowed with --init. 4 fit 20 speeds to the noise level
-    /// in about 12 s on a 2-core machine; more starts map the non-uniqueness of P*.
-    #[arg(long, value_name = "N", default_value_t = 4)]
+    /// Random starts (seeded), 0 ≤ N ≤ 256; 0 is allowed with --init. 4 fit 20 speeds to the
+    /// noise level in about 12 s on a 2-core machine; more starts map the non-uniqueness of P*.
+    #[arg(long, value_name = "N", default_value_t = 4, allow_hyphen_values = true,
+          value_parser = count(STARTS))]
     pub starts: usize,
-    /// Seed of the random starts (the same seed gives the same result).
-    #[arg(long, value_name = "S", default_value_t = 1)]
+    /// Seed of the random starts, 0 ≤ S < 2^64 (the same seed gives the same result).
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1,
+        allow_hyphen_values = true
+    )]
     pub seed: u64,
-    /// Nelder–Mead iterations per run (each start runs once and restarts once).
-    #[arg(long, value_name = "M", default_value_t = 300)]
+    /// Nelder–Mead iterations per run, 1 ≤ M ≤ 10000 (each start runs once and restarts once).
+    #[arg(long, value_name = "M", default_value_t = 300, allow_hyphen_values = true,
+          value_parser = RangedU64ValueParser::<u64>::new().range(MAX_ITER))]
     pub max_iter: u64,
     /// An extra start: a base set P* = B,Γ,κ,σ_b,n,p (e.g. a published set to refine).
     #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
@@ -254,8 +338,8 @@ pub struct ParamArgs {
     #[arg(long, value_name = "KEY=VALUE,…", requires = "v0")]
     pub physical: Option<String>,
 
-    /// Impact speed(s) v0 [m/s], comma-separated (e.g. 0.5,1,2); with --rigorous each may be a
-    /// range a..b.
+    /// Impact speed(s) v0 [m/s], each > 0, comma-separated (e.g. 0.5,1,2), at most 10000; with
+    /// --rigorous each may be a range a..b.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub v0: Option<String>,
 }
@@ -264,25 +348,26 @@ pub struct ParamArgs {
 #[derive(Args, Debug, Clone)]
 pub struct EngineArgs {
     /// Nondimensional time after which "no separation" is reported (T_s = +∞ as far as the
-    /// integration went).
-    #[arg(
-        long,
-        value_name = "T",
-        default_value_t = 100.0,
-        allow_hyphen_values = true
-    )]
+    /// integration went), 0 < T ≤ 1e6.
+    #[arg(long, value_name = "T", default_value_t = 100.0, allow_hyphen_values = true,
+          value_parser = time)]
     pub horizon: f64,
 
-    /// DOP853 relative tolerance [default: 1e-10, the paper's].
-    #[arg(long, value_name = "RTOL", conflicts_with = "rigorous")]
+    /// DOP853 relative tolerance, 100 ε ≤ RTOL < 1 (100 ε ≈ 2.2e-14) [default: 1e-10, the
+    /// paper's].
+    #[arg(long, value_name = "RTOL", conflicts_with = "rigorous",
+          allow_hyphen_values = true, value_parser = rtol)]
     pub rtol: Option<f64>,
 
-    /// DOP853 absolute tolerance [default: 1e-12, the paper's].
-    #[arg(long, value_name = "ATOL", conflicts_with = "rigorous")]
+    /// DOP853 absolute tolerance, 0 < ATOL ≤ 1 [default: 1e-12, the paper's].
+    #[arg(long, value_name = "ATOL", conflicts_with = "rigorous",
+          allow_hyphen_values = true, value_parser = atol)]
     pub atol: Option<f64>,
 
-    /// DOP853 largest step, nondimensional [default: 1e-2, the paper's].
-    #[arg(long, value_name = "H", conflicts_with = "rigorous")]
+    /// DOP853 largest step, nondimensional, H ≥ 1e-9 (inf: no limit) [default: 1e-2, the
+    /// paper's]. At most 10⁶ steps are taken per case.
+    #[arg(long, value_name = "H", conflicts_with = "rigorous",
+          allow_hyphen_values = true, value_parser = max_step)]
     pub max_step: Option<f64>,
 
     /// Prove enclosures of T_s and e with the interval Taylor engine (parameters are enclosed
@@ -290,14 +375,16 @@ pub struct EngineArgs {
     #[arg(long)]
     pub rigorous: bool,
 
-    /// Taylor order of the rigorous engine.
-    #[arg(long, value_name = "K", requires = "rigorous",
-          default_value_t = TaylorOptions::default().order)]
-    pub order: usize,
-    /// With --rigorous and a range of v0 (a..b): how many sub-ranges to prove (the widest or
-    /// unproved one is split first); the result is their hull, valid for every v0 in a..b.
-    #[arg(long, value_name = "N", requires = "rigorous", default_value_t = 32)]
-    pub pieces: usize,
+    /// Taylor order of the rigorous engine, 2 ≤ K ≤ 40 [default: 16]. Needs --rigorous.
+    #[arg(long, value_name = "K", allow_hyphen_values = true,
+          value_parser = count(ORDER))]
+    pub order: Option<usize>,
+    /// With --rigorous and a range of v0 (a..b): how many sub-ranges to prove, 1 ≤ N ≤ 1024
+    /// (the widest or unproved one is split first); the result is their hull, valid for every
+    /// v0 in a..b [default: 32]. Needs --rigorous.
+    #[arg(long, value_name = "N", allow_hyphen_values = true,
+          value_parser = count(PIECES))]
+    pub pieces: Option<usize>,
 }
 
 #[derive(Args, Debug)]
@@ -324,12 +411,15 @@ pub struct TrajectoryArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub engine: EngineArgs,
-    /// Number of uniform sample times (≥ 2), the first at 0 and the last at the end time.
-    #[arg(long, value_name = "N", default_value_t = 1000)]
+    /// Number of uniform sample times, 2 ≤ N ≤ 100000, the first at 0 and the last at the end
+    /// time.
+    #[arg(long, value_name = "N", default_value_t = 1000, allow_hyphen_values = true,
+          value_parser = count(POINTS))]
     pub points: usize,
-    /// End time T (nondimensional) [default: T_s, or the horizon without separation; with
-    /// --rigorous the upper bound of T_s, and T may go up to the end of the proved flow].
-    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    /// End time T (nondimensional), 0 < T ≤ 1e6 [default: T_s, or the horizon without
+    /// separation; with --rigorous the upper bound of T_s, and T may go up to the end of the
+    /// proved flow].
+    #[arg(long, value_name = "T", allow_hyphen_values = true, value_parser = time)]
     pub t_end: Option<f64>,
     /// With --physical: t in s, x in m, v in m/s, F in N (loop: x_mm = |x| in mm, F_N in N);
     /// the model's states stay nondimensional.

@@ -7,7 +7,7 @@
 use super::args::{Cli, Command, CorArgs, TrajectoryArgs};
 use super::input::{self, Case};
 use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
-use super::{CliError, EXIT_FAILED, EXIT_OK};
+use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::rigorous::{rigorous_impact, rigorous_impact_over_speeds};
@@ -53,7 +53,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let start = std::time::Instant::now();
         let rows: Vec<RigorousRow> = cases
             .par_iter()
-            .map(|c| rigorous_row(kind, c, &opts, a.engine.pieces))
+            .map(|c| rigorous_row(kind, c, &opts, input::pieces(&a.engine)))
             .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
@@ -80,26 +80,42 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
             elapsed,
         )
     };
-    if a.timing {
-        let s = elapsed.as_secs_f64();
-        eprintln!(
-            "bwcl: timing: {total} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s))",
-            s / total.max(1) as f64 * 1e6,
-            rayon::current_num_threads()
-        );
+    // notes only after the output is written: an error must stay the one stderr line
+    let timing = || {
+        if a.timing {
+            let s = elapsed.as_secs_f64();
+            note(&format!(
+                "bwcl: timing: {total} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s))",
+                s / total.max(1) as f64 * 1e6,
+                rayon::current_num_threads()
+            ));
+        }
+    };
+    if failed == 0 {
+        output::emit(a.out.as_deref(), &bytes)?;
+        timing();
+        return Ok(EXIT_OK);
     }
-    output::emit(a.out.as_deref(), &bytes)?;
-    if failed > 0 {
-        let what = if a.engine.rigorous {
-            "not proved"
-        } else {
-            "not integrated"
-        };
-        eprintln!("bwcl: {failed} of {total} case(s) {what} (the reason is in the output)");
-        Ok(EXIT_FAILED)
+    // --out is replaced only when everything succeeded: the rows (with the reasons) go to
+    // stdout instead
+    output::emit(None, &bytes)?;
+    timing();
+    let what = if a.engine.rigorous {
+        "not proved"
     } else {
-        Ok(EXIT_OK)
-    }
+        "not integrated"
+    };
+    let kept = match &a.out {
+        Some(p) => format!(
+            "; --out '{}' left unchanged, the output is on stdout",
+            bwcl::fit::data::echo(&p.to_string_lossy())
+        ),
+        None => String::new(),
+    };
+    note(&format!(
+        "bwcl: {failed} of {total} case(s) {what} (the reason is in the output){kept}"
+    ));
+    Ok(EXIT_FAILED)
 }
 
 /// The six parameters of a set for the JSON output (also used by `fit`).
@@ -213,21 +229,21 @@ enum Curve {
     Loop,
 }
 
-/// A CSV: the header and the rows, already formatted.
-type Csv = (Vec<String>, Vec<Vec<String>>);
+/// A CSV: the header and the rows, already formatted, and a note for stderr (written after
+/// the CSV).
+type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
 
 fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.params.model);
-    let points = input::points(a.points)?;
-    let t_end = input::t_end(a.t_end)?;
+    let (points, t_end) = (a.points, a.t_end);
     if a.physical_units && a.params.physical.is_none() {
         return Err(CliError::Input(
             "--physical-units needs --physical (the scales come from the physical parameters)"
                 .into(),
         ));
     }
-    let (head, rows) = if a.engine.rigorous {
+    let (head, rows, remark) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let case = input::single_case::<Interval>(&a.params)?;
         with_model!(kind, case.params, |m| rigorous_curve(
@@ -247,6 +263,9 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     let head: Vec<&str> = head.iter().map(String::as_str).collect();
     let bytes = output::csv(&head, rows)?;
     output::emit(a.out.as_deref(), &bytes)?;
+    if let Some(r) = remark {
+        note(&r);
+    }
     Ok(EXIT_OK)
 }
 
@@ -260,15 +279,16 @@ fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
     what: Curve,
 ) -> Result<Csv, CliError> {
     let failed = |e: bwcl::observables::ImpactError| CliError::Failed(e.to_string());
+    let mut remark = None;
     let end = match t_end {
         Some(t) => t,
         None => match impact(model, opts).map_err(failed)?.ts {
             Some(ts) => ts,
             None => {
-                eprintln!(
+                remark = Some(format!(
                     "bwcl: note: no separation before the horizon T = {}; the samples end there",
                     num(opts.horizon)
-                );
+                ));
                 opts.horizon
             }
         },
@@ -306,7 +326,7 @@ fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
                 .collect(),
         ),
     };
-    Ok((head, rows))
+    Ok((head, rows, remark))
 }
 
 /// Samples of the proved flow: the enclosure of every column at each grid time.
@@ -366,5 +386,5 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
         }
         rows.push(r);
     }
-    Ok((head, rows))
+    Ok((head, rows, None))
 }

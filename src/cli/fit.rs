@@ -1,8 +1,9 @@
 //! The `fit` and `cost` subcommands: parameter identification from measured CoR data (eq:J).
 
 use super::args::{CostArgs, FitArgs, ReportFormat};
+use super::input::nd_error;
 use super::output::{self, ParamsOut, num};
-use super::{CliError, EXIT_FAILED, EXIT_OK};
+use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::fit::nelder_mead::ProgressFn;
 use bwcl::fit::{CorData, FitCurve, FitOptions, Progress, fit as run_fit, model_curve};
 use bwcl::models::{ModelKind, NdParams};
@@ -80,6 +81,11 @@ fn base_text(p: &NdParams<f64>) -> String {
 fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
     CorData::read(path).map_err(|e| CliError::Input(format!("--data {e}")))
 }
+
+/// Most DOP853 steps of one CoR inside `fit`: a well-posed case takes a few hundred to a few
+/// thousand; a stiff trial set (B or σ_b in the millions) is then counted as a failure
+/// (residual 1) instead of taking 10⁶ steps, which bounds the time of a fit.
+const FIT_MAX_STEPS: usize = 50_000;
 
 fn curve_points(c: &FitCurve) -> Vec<CurvePoint> {
     c.v0.iter()
@@ -172,17 +178,13 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
     let mut initial = Vec::new();
     if let Some(text) = &a.init {
         initial.push(
-            NdParams::<f64>::parse(kind, text)
-                .map_err(|e| CliError::Input(format!("--init: {e}")))?,
+            NdParams::<f64>::parse(kind, text).map_err(|e| nd_error::<f64>("--init", text, e))?,
         );
     }
     if a.starts == 0 && initial.is_empty() {
         return Err(CliError::Input(
             "--starts 0 needs --init (there would be nothing to start from)".into(),
         ));
-    }
-    if a.max_iter == 0 {
-        return Err(CliError::Input("--max-iter 0 must be ≥ 1".into()));
     }
     match (a.p1, kind, initial.first()) {
         (true, _, Some(p)) if p.p != 1.0 => {
@@ -206,6 +208,8 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
         initial,
         ..FitOptions::default()
     };
+    let mut opts = opts;
+    opts.float.ode.max_steps = opts.float.ode.max_steps.min(FIT_MAX_STEPS);
     let n_starts = (opts.starts + opts.initial.len()) as u64;
     let budget = opts.max_iter * (1 + opts.restarts as u64);
     let bar = progress_bar(n_starts * budget);
@@ -311,8 +315,8 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
 
 pub fn cost(a: &CostArgs) -> Result<i32, CliError> {
     let kind = ModelKind::from(a.model);
-    let base = NdParams::<f64>::parse(kind, &a.base)
-        .map_err(|e| CliError::Input(format!("--base: {e}")))?;
+    let base =
+        NdParams::<f64>::parse(kind, &a.base).map_err(|e| nd_error::<f64>("--base", &a.base, e))?;
     let data = read_data(&a.data)?;
     let curve = model_curve(kind, &base, &data, &FloatOptions::default());
     let m = data.len();
@@ -345,11 +349,11 @@ fn failures(c: &FitCurve) -> Result<i32, CliError> {
     if c.errors.is_empty() {
         Ok(EXIT_OK)
     } else {
-        eprintln!(
+        note(&format!(
             "bwcl: the model could not be evaluated at {} speed(s); each counts with residual 1 \
              in J (the reason is in the output)",
             c.errors.len()
-        );
+        ));
         Ok(EXIT_FAILED)
     }
 }

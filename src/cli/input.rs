@@ -5,15 +5,23 @@
 
 use super::CliError;
 use super::args::{EngineArgs, ParamArgs};
-use super::output::num;
 use bwcl::arith::Real;
 use bwcl::engines::dop853::Options;
 use bwcl::engines::taylor::TaylorOptions;
+use bwcl::fit::data::echo;
 use bwcl::models::params::show;
 use bwcl::models::scaling::{PhysicalParams, Scales, nd_from_base, parse_speeds};
 use bwcl::models::{ModelKind, NdParams, ParamError};
 use bwcl::observables::FloatOptions;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// Most impact speeds in one --v0 list.
+pub const MAX_SPEEDS: usize = 10_000;
+/// Default --pieces.
+const PIECES: usize = 32;
+
+/// The names of the six values of --nd, --base and --init, as parameter errors name them.
+const ND_NAMES: [&str; 6] = ["B", "Γ", "κ", "σ", "n", "p"];
 
 /// One collision to compute: its impact speed (none for --nd), its nondimensional parameters,
 /// and for --physical the scales at that speed.
@@ -31,7 +39,8 @@ pub struct Case<R> {
 pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
     let kind = ModelKind::from(p.model);
     if let Some(text) = &p.nd {
-        let params = NdParams::<R>::parse(kind, text).map_err(|e| bad("--nd", e))?;
+        let params =
+            NdParams::<R>::parse(kind, text).map_err(|e| nd_error::<R>("--nd", text, e))?;
         return Ok(vec![Case {
             v0: None,
             params,
@@ -46,13 +55,19 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
         ));
     };
     if let Some(text) = &p.base {
-        let base = NdParams::<R>::parse(kind, text).map_err(|e| bad("--base", e))?;
+        let base =
+            NdParams::<R>::parse(kind, text).map_err(|e| nd_error::<R>("--base", text, e))?;
         let speeds = speeds::<R>(v0_text)?;
         speeds
             .into_iter()
-            .map(|v0| {
+            .zip(v0_text.split(','))
+            .map(|(v0, token)| {
                 let params = nd_from_base(kind, &base, &v0).map_err(|e| {
-                    CliError::Input(format!("--base mapped to v0 = {}: {e}", show(&v0)))
+                    CliError::Input(format!(
+                        "--base mapped to v0 = {}: {}",
+                        echo(token.trim()),
+                        compact(&e.0)
+                    ))
                 })?;
                 Ok(Case {
                     v0: Some(v0),
@@ -63,15 +78,24 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             })
             .collect()
     } else if let Some(text) = &p.physical {
-        let phys = PhysicalParams::<R>::parse(kind, text).map_err(|e| bad("--physical", e))?;
+        let phys = PhysicalParams::<R>::parse(kind, text).map_err(|e| {
+            let pairs: Vec<(&str, &str)> = text
+                .split(',')
+                .filter_map(|item| item.split_once('='))
+                .map(|(k, v)| (k.trim(), v.trim()))
+                .collect();
+            input_error::<R>("--physical", text, &pairs, e)
+        })?;
         let speeds = speeds::<R>(v0_text)?;
         speeds
             .into_iter()
-            .map(|v0| {
+            .zip(v0_text.split(','))
+            .map(|(v0, token)| {
                 let params = nondimensionalize(kind, &phys, &v0).map_err(|e| {
                     CliError::Input(format!(
-                        "--physical at v0 = {}: the nondimensional set is outside 𝓟: {e}",
-                        show(&v0)
+                        "--physical at v0 = {}: the nondimensional set is outside 𝓟: {}",
+                        echo(token.trim()),
+                        compact(&e.0)
                     ))
                 })?;
                 let scales = phys.scales(&v0);
@@ -105,26 +129,102 @@ fn nondimensionalize<R: Real>(
     }
 }
 
-/// The impact speeds of --v0.
+/// The impact speeds of --v0 (at most [`MAX_SPEEDS`]).
 fn speeds<R: Real>(text: &str) -> Result<Vec<R>, CliError> {
+    let n = text.split(',').count();
+    if n > MAX_SPEEDS {
+        return Err(CliError::Input(format!(
+            "--v0 '{}': {n} speeds, at most {MAX_SPEEDS} are taken",
+            echo(text)
+        )));
+    }
     parse_speeds::<R>(text).map_err(|e| {
-        let hint = if e.0.contains("needs the rigorous engine") {
-            " (add --rigorous)"
-        } else {
-            ""
-        };
-        CliError::Input(format!("--v0 '{text}': {e}{hint}"))
+        let pairs: Vec<(&str, &str)> = text.split(',').map(|t| ("v0", t.trim())).collect();
+        input_error::<R>("--v0", text, &pairs, e)
     })
 }
 
-/// A parameter error of option `opt`, with a hint when a range was given without --rigorous.
-fn bad(opt: &str, e: ParamError) -> CliError {
-    let hint = if e.0.contains("needs the rigorous engine") {
+/// A parameter error of --nd, --base or --init (the six values B,Γ,κ,σ,n,p of `text`).
+pub fn nd_error<R: Real>(opt: &str, text: &str, e: ParamError) -> CliError {
+    let pairs: Vec<(&str, &str)> = ND_NAMES
+        .iter()
+        .copied()
+        .zip(text.split(',').map(str::trim))
+        .collect();
+    input_error::<R>(opt, text, &pairs, e)
+}
+
+/// A parameter error of option `opt` whose text was `text`, rendered with what the user wrote:
+/// the value the message names ("Γ = …", from `pairs` of names and tokens) is replaced by the
+/// user's token (escaped, shortened; for an interval with the enclosure it was read as), any
+/// other echo of the text is escaped and shortened, long decimals are written with an exponent,
+/// and a range without --rigorous gets a hint.
+fn input_error<R: Real>(opt: &str, text: &str, pairs: &[(&str, &str)], e: ParamError) -> CliError {
+    let mut msg = e.0;
+    for (name, token) in pairs {
+        let Ok(x) = R::parse_decimal(token) else {
+            continue;
+        };
+        let prefix = format!("{name} = {}", show(&x));
+        if let Some(rest) = msg.strip_prefix(&prefix) {
+            let read_as = if x.lo() < x.hi() && !token.contains("..") {
+                format!(" (enclosed in [{}, {}])", short(x.lo()), short(x.hi()))
+            } else {
+                String::new()
+            };
+            msg = format!("{name} = {}{read_as}{}", echo(token), compact(rest));
+            return CliError::Input(format!("{opt}: {msg}"));
+        }
+    }
+    let items = text.split(',').map(str::trim);
+    for token in std::iter::once(text)
+        .chain(items)
+        .chain(pairs.iter().map(|p| p.1))
+    {
+        if !token.is_empty() && echo(token) != token {
+            msg = msg.replace(token, &echo(token));
+        }
+    }
+    let hint = if msg.contains("needs the rigorous engine") {
         " (add --rigorous)"
     } else {
         ""
     };
-    CliError::Input(format!("{opt}: {e}{hint}"))
+    CliError::Input(format!("{opt}: {}{hint}", compact(&msg)))
+}
+
+/// A double as a short decimal that reads back to it (with an exponent when long).
+pub fn short(x: f64) -> String {
+    let plain = format!("{}", if x == 0.0 { 0.0 } else { x });
+    if plain.len() <= 20 {
+        plain
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `msg` with every decimal longer than 20 characters (a double printed in full, e.g. 10³⁰⁰
+/// with its 301 digits) rewritten by [`short`]: the same double, read back.
+pub fn compact(msg: &str) -> String {
+    let mut out = String::new();
+    let mut run = String::new();
+    let flush = |run: &mut String, out: &mut String| {
+        match run.parse::<f64>() {
+            Ok(x) if run.len() > 20 => out.push_str(&short(x)),
+            _ => out.push_str(run),
+        }
+        run.clear();
+    };
+    for c in msg.chars() {
+        if c.is_ascii_digit() || c == '.' || (c == '-' && run.is_empty()) {
+            run.push(c);
+        } else {
+            flush(&mut run, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut run, &mut out);
+    out
 }
 
 /// The single case of trajectory/loop: exactly one impact speed.
@@ -133,112 +233,120 @@ pub fn single_case<R: Real>(p: &ParamArgs) -> Result<Case<R>, CliError> {
     if all.len() != 1 {
         return Err(CliError::Input(format!(
             "--v0 '{}': this command takes exactly one impact speed, got {}",
-            p.v0.as_deref().unwrap_or(""),
+            echo(p.v0.as_deref().unwrap_or("")),
             all.len()
         )));
     }
     Ok(all.remove(0))
 }
 
-/// The horizon: finite and > 0.
-fn horizon(e: &EngineArgs) -> Result<f64, CliError> {
-    if e.horizon.is_finite() && e.horizon > 0.0 {
-        Ok(e.horizon)
-    } else {
-        Err(CliError::Input(format!(
-            "--horizon {} must be a finite number > 0",
-            num(e.horizon)
-        )))
+/// --order and --pieces belong to the rigorous engine (clap's `requires` does not see every
+/// combination, e.g. with --rtol).
+fn rigorous_only(e: &EngineArgs) -> Result<(), CliError> {
+    if e.rigorous {
+        return Ok(());
     }
-}
-
-/// DOP853 settings: the paper's, with the given overrides, validated.
-pub fn float_options(e: &EngineArgs) -> Result<FloatOptions, CliError> {
-    let mut ode = Options::paper();
-    if let Some(r) = e.rtol {
-        if !(100.0 * f64::EPSILON..1.0).contains(&r) {
+    for (name, given) in [("--order", e.order), ("--pieces", e.pieces)] {
+        if let Some(k) = given {
             return Err(CliError::Input(format!(
-                "--rtol {} must be a finite number in [100 ε, 1) = [{:e}, 1)",
-                num(r),
-                100.0 * f64::EPSILON
+                "{name} {k} is an option of the rigorous engine: add --rigorous"
             )));
         }
+    }
+    Ok(())
+}
+
+/// DOP853 settings: the paper's, with the given overrides (their ranges checked by clap).
+pub fn float_options(e: &EngineArgs) -> Result<FloatOptions, CliError> {
+    rigorous_only(e)?;
+    let mut ode = Options::paper();
+    if let Some(r) = e.rtol {
         ode.rtol = r;
     }
     if let Some(a) = e.atol {
-        if !(a.is_finite() && a >= 0.0) {
-            return Err(CliError::Input(format!(
-                "--atol {} must be a finite number ≥ 0",
-                num(a)
-            )));
-        }
         ode.atol = a;
     }
     if let Some(h) = e.max_step {
-        if h.is_nan() || h <= 0.0 {
-            return Err(CliError::Input(format!(
-                "--max-step {} must be > 0",
-                num(h)
-            )));
-        }
         ode.max_step = h;
     }
     Ok(FloatOptions {
         ode,
-        horizon: horizon(e)?,
+        horizon: e.horizon,
     })
 }
 
 /// Rigorous-engine settings: the engine's defaults with --order and --horizon.
 pub fn taylor_options(e: &EngineArgs) -> Result<TaylorOptions, CliError> {
-    if e.order == 0 {
-        return Err(CliError::Input("--order 0 must be ≥ 1".into()));
-    }
+    rigorous_only(e)?;
+    let default = TaylorOptions::default();
     Ok(TaylorOptions {
-        horizon: horizon(e)?,
-        order: e.order,
-        ..TaylorOptions::default()
+        horizon: e.horizon,
+        order: e.order.unwrap_or(default.order),
+        ..default
     })
 }
 
-/// --points: at least 2.
-pub fn points(n: usize) -> Result<usize, CliError> {
-    if n >= 2 {
-        Ok(n)
-    } else {
-        Err(CliError::Input(format!("--points {n} must be ≥ 2")))
-    }
+/// --pieces, or its default.
+pub fn pieces(e: &EngineArgs) -> usize {
+    e.pieces.unwrap_or(PIECES)
 }
 
-/// --t-end: finite and > 0 when given.
-pub fn t_end(t: Option<f64>) -> Result<Option<f64>, CliError> {
-    match t {
-        Some(t) if !(t.is_finite() && t > 0.0) => Err(CliError::Input(format!(
-            "--t-end {} must be a finite number > 0",
-            num(t)
-        ))),
-        t => Ok(t),
+/// Where `path` leads: the file at the end of its chain of symbolic links (the link itself is
+/// kept and its target replaced), the chain capped at 40 links.
+pub fn resolve_links(path: &Path) -> Result<PathBuf, CliError> {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let link = std::fs::read_link(&p).map_err(|e| out_error(path, e))?;
+                p = match p.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(p),
+        }
     }
+    Err(CliError::Input(format!(
+        "--out '{}': too many levels of symbolic links",
+        echo(&path.to_string_lossy())
+    )))
 }
 
-/// --out: its directory must exist (checked before any computation).
+fn out_error(path: &Path, e: std::io::Error) -> CliError {
+    CliError::Input(format!("--out '{}': {e}", echo(&path.to_string_lossy())))
+}
+
+/// --out: a regular file or a new name, in a directory that exists (checked before any
+/// computation; through symbolic links).
 pub fn out_path(out: Option<&Path>) -> Result<(), CliError> {
     let Some(path) = out else { return Ok(()) };
+    let shown = echo(&path.to_string_lossy());
     if path.as_os_str().is_empty() || path.is_dir() {
         return Err(CliError::Input(format!(
-            "--out '{}' is not a file name",
-            path.display()
+            "--out '{shown}' is not a file name"
         )));
     }
-    let dir = match path.parent() {
+    let target = resolve_links(path)?;
+    // NAME_MAX of Linux and most file systems: found now, not after the computation
+    if target.file_name().is_some_and(|n| n.len() > 255) {
+        return Err(CliError::Input(format!(
+            "--out '{shown}': the file name is longer than 255 bytes"
+        )));
+    }
+    if target.exists() && !target.is_file() {
+        return Err(CliError::Input(format!(
+            "--out '{shown}' is not a regular file (it would not be replaced)"
+        )));
+    }
+    let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     if !dir.is_dir() {
         return Err(CliError::Input(format!(
-            "--out '{}': the directory '{}' does not exist",
-            path.display(),
-            dir.display()
+            "--out '{shown}': the directory '{}' does not exist",
+            echo(&dir.to_string_lossy())
         )));
     }
     Ok(())

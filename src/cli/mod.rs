@@ -7,8 +7,10 @@ mod fit;
 mod input;
 mod output;
 
+use bwcl::fit::data::echo;
 use clap::Parser;
-use clap::error::ErrorKind;
+use clap::error::{ContextValue, ErrorKind};
+use std::io::Write;
 
 /// Exit code of a successful run.
 pub const EXIT_OK: i32 = 0;
@@ -57,25 +59,109 @@ pub fn run() -> i32 {
 
 /// Prints the one error line.
 fn report(message: &str) {
-    // a message is one line by construction; fold any stray newline to keep it so
+    // a message is one line by construction, its user values escaped; fold any stray
+    // whitespace and escape any stray control character to keep it so
     let line: Vec<&str> = message.split_whitespace().collect();
-    eprintln!("bwcl: error: {}", line.join(" "));
+    let line: String = line
+        .join(" ")
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                echo(&c.to_string())
+            } else {
+                c.to_string()
+            }
+        })
+        .collect();
+    note(&format!("bwcl: error: {line}"));
+}
+
+/// Writes a line to stderr; a closed or full stderr is ignored (`eprintln!` would panic, and
+/// the exit code still tells what happened).
+pub fn note(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
 
 /// Help and version go to stdout (exit 0); a usage error becomes one line (exit 2).
 fn clap_error(e: clap::Error) -> i32 {
     match e.kind() {
-        ErrorKind::DisplayHelp
-        | ErrorKind::DisplayVersion
-        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            let _ = e.print();
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            report("a subcommand is needed: cor, trajectory, loop, fit or cost (see --help)");
+            EXIT_BAD_INPUT
+        }
+        ErrorKind::InvalidUtf8 => {
+            report(&invalid_utf8());
+            EXIT_BAD_INPUT
+        }
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            // not e.print(): a closed stdout must not turn --help into an error
+            let text = e.render().to_string();
+            let _ = std::io::stdout().lock().write_all(text.as_bytes());
             e.exit_code()
         }
         _ => {
-            report(&one_line(&e.render().to_string()));
+            report(&one_line(&escape_values(&e)));
             EXIT_BAD_INPUT
         }
     }
+}
+
+/// Which argument is not UTF-8 (clap does not say): the first such, after the option it
+/// follows.
+fn invalid_utf8() -> String {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    let Some(i) = args.iter().position(|a| a.to_str().is_none()) else {
+        return "an argument is not valid UTF-8".into();
+    };
+    let shown = echo(&args[i].to_string_lossy());
+    match i.checked_sub(1).and_then(|j| args[j].to_str()) {
+        Some(opt) if opt.starts_with("--") => {
+            format!("the value '{shown}' of {} is not valid UTF-8", echo(opt))
+        }
+        _ => format!("the argument '{shown}' is not valid UTF-8"),
+    }
+}
+
+/// clap's message with the user's values in it (an unknown argument, an invalid value)
+/// escaped and shortened: clap shows them raw and whole.
+fn escape_values(e: &clap::Error) -> String {
+    // the text with its styles (Display would strip every escape sequence, the user's too)
+    let mut text = e.render().ansi().to_string();
+    let mut values: Vec<&str> = Vec::new();
+    for (_, v) in e.context() {
+        match v {
+            ContextValue::String(s) => values.push(s),
+            ContextValue::Strings(list) => values.extend(list.iter().map(String::as_str)),
+            _ => {}
+        }
+    }
+    // longest first, so that a value containing another is replaced whole
+    values.sort_by_key(|v| std::cmp::Reverse(v.len()));
+    for v in values {
+        if !v.is_empty() && echo(v) != v {
+            text = text.replace(v, &echo(v));
+        }
+    }
+    strip_styles(&text)
+}
+
+/// `text` without its ANSI SGR sequences (ESC [ … m), the styles clap adds.
+fn strip_styles(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(i) = rest.find("\x1b[") {
+        out.push_str(&rest[..i]);
+        let tail = &rest[i + 2..];
+        match tail.find(|c: char| !(c.is_ascii_digit() || c == ';')) {
+            Some(j) if tail[j..].starts_with('m') => rest = &tail[j + 1..],
+            _ => {
+                out.push_str("\x1b[");
+                rest = tail;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// clap's multi-paragraph error as one line: the message and its tips, without the usage.

@@ -340,7 +340,9 @@ fn table(head: &[&str], rows: &[Vec<String>]) -> String {
 }
 
 /// Writes `bytes` to stdout, or to `path` through a temporary file in the same directory that
-/// is renamed into place (so a failed run never leaves a partial or stale-looking file).
+/// is renamed into place (so a failed run never leaves a partial or stale-looking file). A
+/// symbolic link is kept: the file it leads to is replaced. The temporary name is short, so
+/// that any name the file system takes for `path` works.
 pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
     let Some(path) = out else {
         let mut so = std::io::stdout().lock();
@@ -351,20 +353,17 @@ pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
             Err(e) => Err(CliError::Failed(format!("writing to stdout: {e}"))),
         };
     };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = path.with_file_name(format!(".{name}.bwcl-{}.tmp", std::process::id()));
+    let target = super::input::resolve_links(path)?;
+    let tmp = target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()));
     let io = |what: &str, e: std::io::Error| {
-        CliError::Input(format!("--out '{}': {what}: {e}", path.display()))
+        let _ = std::fs::remove_file(&tmp);
+        let shown = bwcl::fit::data::echo(&path.to_string_lossy());
+        CliError::Input(format!("--out '{shown}': {what}: {e}"))
     };
-    std::fs::write(&tmp, bytes).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io("cannot write", e)
-    })?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io("cannot replace", e)
-    })
+    std::fs::write(&tmp, bytes).map_err(|e| io("cannot write", e))?;
+    // a replaced file keeps its permissions
+    if let Ok(m) = std::fs::metadata(&target) {
+        let _ = std::fs::set_permissions(&tmp, m.permissions());
+    }
+    std::fs::rename(&tmp, &target).map_err(|e| io("cannot replace", e))
 }
