@@ -79,8 +79,15 @@ impl Decimal {
 
     /// The exact value.
     pub fn to_rational(&self) -> Rational {
-        let m = Integer::from_str_radix(if self.digits.is_empty() { "0" } else { &self.digits }, 10)
-            .expect("digits");
+        let m = Integer::from_str_radix(
+            if self.digits.is_empty() {
+                "0"
+            } else {
+                &self.digits
+            },
+            10,
+        )
+        .expect("digits");
         let m = if self.neg { -m } else { m };
         m * pow10(self.exp)
     }
@@ -203,6 +210,30 @@ pub fn outward(x: f64, dir: Rounding) -> String {
     }
 }
 
+/// An upper bound of the width hi − lo as a double (the difference rounded up, exactly): what a
+/// printed width is computed from. +∞ if a bound is not finite.
+pub fn width_up(lo: f64, hi: f64) -> f64 {
+    let w = hi - lo;
+    match (
+        Rational::from_f64(lo),
+        Rational::from_f64(hi),
+        Rational::from_f64(w),
+    ) {
+        (Some(l), Some(h), Some(wr)) if wr < Rational::from(&h - &l) => w.next_up(),
+        (Some(_), Some(_), Some(_)) => w,
+        _ => f64::INFINITY,
+    }
+}
+
+/// `x` rounded up to `digits` significant digits in scientific form (`7.84e-13` for 3): a short
+/// printed upper bound, e.g. of a width.
+pub fn sci_up(x: f64, digits: usize) -> String {
+    match directed(x, digits, Rounding::Up) {
+        Some(d) => d.scientific(digits),
+        None => format!("{x}"),
+    }
+}
+
 /// The exact value of a decimal number as written (`-1.25e-3`, `0.1`, `7`); `None` if it is
 /// not one. For tests and checkers that compare a printed bound with a double exactly.
 pub fn parse_rational(s: &str) -> Option<Rational> {
@@ -247,7 +278,10 @@ mod tests {
             Rounding::Down => assert!(v <= r, "{x:e}: {} above", dec.scientific(1)),
             Rounding::Up => assert!(v >= r, "{x:e}: {} below", dec.scientific(1)),
         }
-        assert!(dec.digits.len() <= digits, "{x:e}: {dec:?} has > {digits} digits");
+        assert!(
+            dec.digits.len() <= digits,
+            "{x:e}: {dec:?} has > {digits} digits"
+        );
         if v != r {
             // the decade of the inward neighbour can be lower (10.0 → 9.99…): its step is the
             // smaller one; either way it must cross x
@@ -274,7 +308,11 @@ mod tests {
         let text = dec.text();
         // the text is the decimal, exactly
         assert_eq!(parse_rational(&text).unwrap(), dec.to_rational(), "{text}");
-        assert_eq!(text.parse::<f64>().unwrap(), x, "{text} does not read back to {x:e}");
+        assert_eq!(
+            text.parse::<f64>().unwrap(),
+            x,
+            "{text} does not read back to {x:e}"
+        );
         let n = dec.digits.len().max(1);
         assert!(n <= 18, "{x:e}: {text} has {n} digits");
         check_tight(x, &dec, n, dir);
@@ -393,13 +431,34 @@ mod tests {
     }
 
     #[test]
+    fn decimal_width_up_is_an_upper_bound() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for _ in 0..10_000 {
+            let lo: f64 = rng.random_range(-10.0..10.0);
+            let hi = lo + rng.random_range(0.0..1e-10) * [1.0, 1e10][rng.random_range(0..2)];
+            let w = width_up(lo, hi);
+            let exact = Rational::from_f64(hi).unwrap() - Rational::from_f64(lo).unwrap();
+            assert!(Rational::from_f64(w).unwrap() >= exact, "{lo:e} {hi:e}");
+            assert!(
+                Rational::from_f64(w.next_down()).unwrap() < exact,
+                "{lo:e} {hi:e}"
+            );
+            assert!(parse_rational(&sci_up(w, 3)).unwrap() >= exact);
+        }
+        assert_eq!(sci_up(7.831e-13, 3), "7.84e-13");
+        assert_eq!(width_up(1.0, f64::INFINITY), f64::INFINITY);
+    }
+
+    #[test]
     fn decimal_parse_rational_exact() {
         let q = |s| parse_rational(s).unwrap();
         assert_eq!(q("0.1"), Rational::from((1, 10)));
         assert_eq!(q("-1.25e-3"), Rational::from((-1, 800)));
         assert_eq!(q("12e2"), Rational::from(1200));
         assert_eq!(q("5."), Rational::from(5));
-        for bad in ["", "e5", "1.2.3", "--1", "1e", "inf", "NaN", "0x10", "1e999999"] {
+        for bad in [
+            "", "e5", "1.2.3", "--1", "1e", "inf", "NaN", "0x10", "1e999999",
+        ] {
             assert!(parse_rational(bad).is_none(), "{bad}");
         }
     }
