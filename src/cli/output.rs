@@ -104,7 +104,12 @@ fn json_bound<S: Serializer>(x: f64, dir: Rounding, s: S) -> Result<S::Ok, S::Er
     if !x.is_finite() {
         return s.serialize_none();
     }
-    let raw = RawValue::from_string(decimal::outward(x, dir)).map_err(serde::ser::Error::custom)?;
+    let mut text = decimal::outward(x, dir);
+    // a float as serde_json writes one (`1.0`, not `1`), so readers keep the field's type
+    if !text.contains(['.', 'e']) {
+        text.push_str(".0");
+    }
+    let raw = RawValue::from_string(text).map_err(serde::ser::Error::custom)?;
     raw.serialize(s)
 }
 
