@@ -173,7 +173,7 @@ pub fn directed_rational(r: &Rational, digits: usize, dir: Rounding) -> Decimal 
         return Decimal::new(Integer::new(), 0);
     }
     let exp = decade(r) - digits.max(1) as i64 + 1;
-    let scaled = Rational::from(r / pow10(exp));
+    let scaled = r / pow10(exp);
     let (num, den) = scaled.into_numer_denom();
     let q = match dir {
         Rounding::Down => num.div_floor(den),
@@ -350,7 +350,7 @@ mod tests {
             2.2250738585072014e-308,
             0.3,
             2.0 / 3.0,
-            9.999999999999999e22,
+            1e23f64.next_down(),
             1e23,
             1e-5,
             1e16,
