@@ -8,6 +8,7 @@ use crate::plot::{Chart, Series, save};
 use bwcl::fit::{FitOptions, model_curve};
 use bwcl::models::{ModelKind, NdParams};
 use bwcl::observables::FloatOptions;
+use bwcl::observables::decimal::{Rounding, outward, sci_up, width_up};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -49,13 +50,16 @@ pub fn write_cor(
         for (s, rows) in TABLE1.iter().zip(p) {
             for r in rows {
                 match &r.e {
+                    // bounds rounded outward, the width up (decimal.rs)
                     Ok((lo, hi)) => writeln!(
                         csv,
-                        "{},{},{},{lo},{hi},{},{:.3},",
+                        "{},{},{},{},{},{},{:.3},",
                         s.kind.name(),
                         s.data,
                         r.v0,
-                        hi - lo,
+                        outward(*lo, Rounding::Down),
+                        outward(*hi, Rounding::Up),
+                        outward(width_up(*lo, *hi), Rounding::Up),
                         r.seconds
                     ),
                     Err(why) => writeln!(
@@ -427,17 +431,18 @@ pub fn render(c: &Context) -> String {
                 .iter()
                 .map(|x| {
                     let (lo, hi) = x.e.as_ref().unwrap();
-                    hi - lo
+                    width_up(*lo, *hi)
                 })
                 .fold(0.0, f64::max);
             writeln!(
                 r,
                 "Proved enclosures (interval Taylor engine, the base sets enclosed as written, \
                  v0 the grid's doubles) at {} speeds per set: {} of {n} proved in {secs:.1} s; \
-                 widest enclosure of e: {wmax:.2e}. Plots `fig3_*_rigorous.svg/.png` draw the \
+                 widest enclosure of e: {}. Plots `fig3_*_rigorous.svg/.png` draw the \
                  band [e_lo, e_hi]; data `cor_rigorous.csv`.\n",
                 p[0].len(),
-                ok.len()
+                ok.len(),
+                sci_up(wmax, 3)
             )
             .unwrap();
             // the float value must lie in (or next to) the band: check and report
@@ -481,12 +486,12 @@ pub fn render(c: &Context) -> String {
             for (s, rows_p) in TABLE1.iter().zip(p) {
                 let mut w: Vec<f64> = rows_p
                     .iter()
-                    .filter_map(|x| x.e.as_ref().ok().map(|(lo, hi)| hi - lo))
+                    .filter_map(|x| x.e.as_ref().ok().map(|(lo, hi)| width_up(*lo, *hi)))
                     .collect();
                 w.sort_by(f64::total_cmp);
                 let (wmax, wmed) = match w.len() {
                     0 => ("-".to_string(), "-".to_string()),
-                    n => (format!("{:.2e}", w[n - 1]), format!("{:.2e}", w[n / 2])),
+                    n => (sci_up(w[n - 1], 3), sci_up(w[n / 2], 3)),
                 };
                 writeln!(
                     r,

@@ -2,8 +2,10 @@
 //! paper's speeds (`nd_from_base` with interval parameters enclosing the decimals, then
 //! `rigorous_impact`), their JSON certificate, and its independent check.
 //!
-//! Bounds are stored as exact doubles twice: `{:e}` (Rust prints the shortest decimal that
-//! parses back to the same double) and the IEEE-754 bit pattern in hex; `check` reads the bits.
+//! Bounds are stored as exact doubles twice: `dec`, the shortest decimal on the outer side of
+//! the bound (lo rounded down, hi up) that parses back to the same double
+//! (`bwcl::observables::decimal::outward`), and the IEEE-754 bit pattern in hex; `check` reads
+//! the bits and checks that `dec` is that double and lies on the outer side of it.
 #![allow(dead_code)]
 
 use bwcl::arith::Real;
@@ -11,6 +13,7 @@ use bwcl::engines::dop853::Options;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::scaling::nd_from_base;
 use bwcl::models::{Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::decimal::{Rounding, outward, parse_rational, width_up};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -53,12 +56,26 @@ pub fn float_e(kind: ModelKind, base: &str, v0: &str) -> Result<f64, String> {
     r.map_err(|e| format!("{e}"))
 }
 
-fn bound(x: f64) -> Value {
-    json!({ "dec": format!("{x:e}"), "bits": format!("{:#018x}", x.to_bits()) })
+fn bound(x: f64, dir: Rounding) -> Value {
+    json!({ "dec": outward(x, dir), "bits": format!("{:#018x}", x.to_bits()) })
 }
 
 fn interval_json(i: Interval) -> Value {
-    json!({ "lo": bound(i.inf()), "hi": bound(i.sup()) })
+    json!({ "lo": bound(i.inf(), Rounding::Down), "hi": bound(i.sup(), Rounding::Up) })
+}
+
+/// An enclosure as text for the log lines, rounded outward.
+pub fn show(i: Interval) -> String {
+    format!(
+        "[{}, {}]",
+        outward(i.inf(), Rounding::Down),
+        outward(i.sup(), Rounding::Up)
+    )
+}
+
+/// A width as text, rounded up (2 digits).
+fn show_width(i: Interval) -> String {
+    bwcl::observables::decimal::sci_up(width_up(i.inf(), i.sup()), 2)
 }
 
 /// Relative margin by which stored claims are wider than the proved enclosures, so that a
@@ -84,7 +101,7 @@ pub fn entry(name: &str, kind: ModelKind, base: &str, v0: &str) -> Result<Value,
         "v0": v0,
         "T_s": interval_json(ts),
         "e": interval_json(e),
-        "e_width": format!("{:e}", e.wid()),
+        "e_width": outward(width_up(e.inf(), e.sup()), Rounding::Up),
     }))
 }
 
@@ -103,24 +120,40 @@ pub fn certificate() -> Result<Value, String> {
     }))
 }
 
-fn read_bound(v: &Value) -> Result<f64, String> {
+/// A stored bound: its bits, after checking that `dec` reads back to them and, as an exact
+/// decimal, lies on side `dir` of them (a printed lower bound ≤ the double, upper ≥).
+pub fn read_bound(v: &Value, dir: Rounding) -> Result<f64, String> {
     let s = v["bits"].as_str().ok_or("missing bits")?;
     let bits = u64::from_str_radix(s.trim_start_matches("0x"), 16).map_err(|e| e.to_string())?;
     let x = f64::from_bits(bits);
+    let dec = v["dec"].as_str().ok_or("missing dec")?;
     // the decimal must be the same double
-    let d: f64 = v["dec"]
-        .as_str()
-        .ok_or("missing dec")?
-        .parse()
-        .map_err(|_| "bad dec")?;
+    let d: f64 = dec.parse().map_err(|_| "bad dec")?;
     if d.to_bits() != bits {
-        return Err(format!("dec {d:e} and bits {s} disagree"));
+        return Err(format!("dec {dec} and bits {s} disagree"));
+    }
+    // and a bound of it as a decimal
+    let (exact, xr) = match (parse_rational(dec), rug::Rational::from_f64(x)) {
+        (Some(a), Some(b)) => (a, b),
+        _ => return Err(format!("dec {dec} is not a finite decimal")),
+    };
+    let outward = match dir {
+        Rounding::Down => exact <= xr,
+        Rounding::Up => exact >= xr,
+    };
+    if !outward {
+        return Err(format!(
+            "dec {dec} lies inside the bound {s}: not rounded {dir:?}"
+        ));
     }
     Ok(x)
 }
 
 fn read_interval(v: &Value) -> Result<Interval, String> {
-    let (a, b) = (read_bound(&v["lo"])?, read_bound(&v["hi"])?);
+    let (a, b) = (
+        read_bound(&v["lo"], Rounding::Down)?,
+        read_bound(&v["hi"], Rounding::Up)?,
+    );
     Interval::try_from((a, b)).map_err(|_| format!("[{a}, {b}] is not an interval"))
 }
 
@@ -148,28 +181,25 @@ pub fn check_entry(v: &Value) -> Result<String, String> {
     };
     let (Ok(rts), Ok(re)) = (relation(sts, ts), relation(se, e)) else {
         return Err(format!(
-            "{name} v0={v0}: stored T_s [{:e}, {:e}] / e [{:e}, {:e}] not re-proved: the recomputed enclosure is not inside it, T_s [{:e}, {:e}] / e [{:e}, {:e}]",
-            sts.inf(),
-            sts.sup(),
-            se.inf(),
-            se.sup(),
-            ts.inf(),
-            ts.sup(),
-            e.inf(),
-            e.sup()
+            "{name} v0={v0}: stored T_s {} / e {} not re-proved: the recomputed enclosure is not inside it, T_s {} / e {}",
+            show(sts),
+            show(se),
+            show(ts),
+            show(e)
         ));
     };
     let ef = float_e(kind, base, v0)?;
     if !(se.inf() - 1e-11 <= ef && ef <= se.sup() + 1e-11) {
-        return Err(format!("{name} v0={v0}: DOP853 e = {ef} ∉ {se:?} ± 1e-11"));
+        return Err(format!(
+            "{name} v0={v0}: DOP853 e = {ef} ∉ {} ± 1e-11",
+            show(se)
+        ));
     }
     Ok(format!(
-        "{name} v0={v0}: T_s ∈ [{:e}, {:e}] ({rts}), e ∈ [{:e}, {:e}] (width {:.1e}, {re}); DOP853(1e-13) e = {ef:e} (distance to the enclosure {:.1e})",
-        sts.inf(),
-        sts.sup(),
-        se.inf(),
-        se.sup(),
-        se.wid(),
+        "{name} v0={v0}: T_s ∈ {} ({rts}), e ∈ {} (width {}, {re}); DOP853(1e-13) e = {ef:e} (distance to the enclosure {:.1e})",
+        show(sts),
+        show(se),
+        show_width(se),
         (se.inf() - ef).max(ef - se.sup()).max(0.0)
     ))
 }

@@ -381,8 +381,7 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
             Curve::Loop => vec![],
         };
         for c in cols {
-            r.push(num(c.inf()));
-            r.push(num(c.sup()));
+            r.extend(output::outward_pair(c));
         }
         rows.push(r);
     }

@@ -3,8 +3,10 @@
 
 use super::CliError;
 use super::args::Format;
+use bwcl::observables::decimal::{self, Rounding};
 use inari::Interval;
-use serde::Serialize;
+use serde::{Serialize, Serializer};
+use serde_json::value::RawValue;
 use std::io::Write;
 use std::path::Path;
 
@@ -48,23 +50,35 @@ pub struct FloatRow {
 }
 
 /// One rigorous case of `cor`: proved enclosures, or the reason they could not be proved.
+///
+/// In every format each bound is printed rounded outward ([`decimal`]): lower bounds toward
+/// −∞, upper bounds and widths toward +∞.
 #[derive(Serialize, Clone, Debug)]
 pub struct RigorousRow {
     pub model: &'static str,
     /// The enclosure of the impact speed (a range for a..b); None for --nd.
+    #[serde(serialize_with = "json_pair")]
     pub v0: Option<[f64; 2]>,
     pub proved: bool,
     /// Proved: the separation happens (T_s is finite and in `ts`).
     pub separated: bool,
+    #[serde(serialize_with = "json_pair")]
     pub ts: Option<[f64; 2]>,
+    #[serde(serialize_with = "json_width")]
     pub width_ts: Option<f64>,
+    #[serde(serialize_with = "json_pair")]
     pub e: Option<[f64; 2]>,
+    #[serde(serialize_with = "json_width")]
     pub width_e: Option<f64>,
     /// Only for --physical: an enclosure of T_s·T_c [s].
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "json_opt_pair"
+    )]
     pub ts_seconds: Option<Option<[f64; 2]>>,
     pub horizon: f64,
     pub order: usize,
+    #[serde(serialize_with = "json_params")]
     pub params: ParamsOut<[f64; 2]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
@@ -84,6 +98,83 @@ pub fn width(x: Interval) -> f64 {
     }
 }
 
+/// A bound rounded in direction `dir`, as a JSON number with the exact digits of
+/// [`decimal::outward`] (null when not finite, as serde_json writes a non-finite f64).
+fn json_bound<S: Serializer>(x: f64, dir: Rounding, s: S) -> Result<S::Ok, S::Error> {
+    if !x.is_finite() {
+        return s.serialize_none();
+    }
+    let mut text = decimal::outward(x, dir);
+    // a float as serde_json writes one (`1.0`, not `1`), so readers keep the field's type
+    if !text.contains(['.', 'e']) {
+        text.push_str(".0");
+    }
+    let raw = RawValue::from_string(text).map_err(serde::ser::Error::custom)?;
+    raw.serialize(s)
+}
+
+/// An enclosure [lo, hi] rounded outward, as a JSON array of two numbers.
+struct JsonPair([f64; 2]);
+
+impl Serialize for JsonPair {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeTuple;
+        struct B(f64, Rounding);
+        impl Serialize for B {
+            fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                json_bound(self.0, self.1, s)
+            }
+        }
+        let mut t = s.serialize_tuple(2)?;
+        t.serialize_element(&B(self.0[0], Rounding::Down))?;
+        t.serialize_element(&B(self.0[1], Rounding::Up))?;
+        t.end()
+    }
+}
+
+fn json_pair<S: Serializer>(b: &Option<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
+    b.map(JsonPair).serialize(s)
+}
+
+fn json_opt_pair<S: Serializer>(b: &Option<Option<[f64; 2]>>, s: S) -> Result<S::Ok, S::Error> {
+    json_pair(&b.flatten(), s)
+}
+
+/// A width, rounded up.
+fn json_width<S: Serializer>(w: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match w {
+        Some(w) => json_bound(*w, Rounding::Up, s),
+        None => s.serialize_none(),
+    }
+}
+
+/// The interval parameters, each rounded outward.
+fn json_params<S: Serializer>(p: &ParamsOut<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
+    ParamsOut {
+        b: JsonPair(p.b),
+        gamma: JsonPair(p.gamma),
+        kappa: JsonPair(p.kappa),
+        sigma: JsonPair(p.sigma),
+        n: JsonPair(p.n),
+        p: JsonPair(p.p),
+    }
+    .serialize(s)
+}
+
+/// A lower bound (`Rounding::Down`) or an upper bound or width (`Rounding::Up`) as the
+/// shortest decimal on that side that reads back to the same double.
+pub fn outward(x: f64, dir: Rounding) -> String {
+    decimal::outward(x, dir)
+}
+
+/// The cells of an enclosure in a CSV: lower bound rounded down, upper bound up.
+pub fn outward_pair(i: Interval) -> [String; 2] {
+    [
+        outward(i.inf(), Rounding::Down),
+        outward(i.sup(), Rounding::Up),
+    ]
+}
+
 /// A double in the shortest form that reads back exactly: plain for ordinary magnitudes,
 /// exponent form for very small or large ones.
 pub fn num(x: f64) -> String {
@@ -95,13 +186,22 @@ pub fn num(x: f64) -> String {
     }
 }
 
-/// An interval bound at fixed width (17 significant digits: exact, and aligned in a table).
-fn bound(x: f64) -> String {
-    format!("{x:.16e}")
+/// An interval bound at fixed width (17 significant digits, aligned in a table), rounded in
+/// direction `dir` exactly: within one unit of the 17th digit of the double, on its outer side
+/// (it may read back to the neighbouring double, which is still a bound).
+fn bound(x: f64, dir: Rounding) -> String {
+    match decimal::directed(x, 17, dir) {
+        Some(d) => d.scientific(17),
+        None => format!("{x}"),
+    }
 }
 
 fn interval_text(b: [f64; 2]) -> String {
-    format!("[{}, {}]", bound(b[0]), bound(b[1]))
+    format!(
+        "[{}, {}]",
+        bound(b[0], Rounding::Down),
+        bound(b[1], Rounding::Up)
+    )
 }
 
 /// The shortest decimal whose double lies in [l, h], for an interval that is the enclosure
@@ -215,17 +315,18 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             }
             head.push("reason");
             let pair = |b: Option<[f64; 2]>| match b {
-                Some([l, h]) => [num(l), num(h)],
+                Some([l, h]) => [outward(l, Rounding::Down), outward(h, Rounding::Up)],
                 None => [String::new(), String::new()],
             };
+            let up = |w: Option<f64>| w.map(|w| outward(w, Rounding::Up)).unwrap_or_default();
             let body = rows.iter().map(|r| {
                 let mut c = vec![r.model.to_string()];
                 c.extend(pair(r.v0));
                 c.push(r.proved.to_string());
                 c.extend(pair(r.ts));
-                c.push(opt_num(r.width_ts));
+                c.push(up(r.width_ts));
                 c.extend(pair(r.e));
-                c.push(opt_num(r.width_e));
+                c.push(up(r.width_e));
                 if physical {
                     c.extend(pair(r.ts_seconds.flatten()));
                 }
@@ -245,16 +346,24 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                     let v0 = match r.v0 {
                         None => "-".to_string(),
                         Some([l, h]) if l == h => num(l),
-                        Some([l, h]) => short_decimal_in(l, h)
-                            .unwrap_or_else(|| format!("[{}, {}]", num(l), num(h))),
+                        Some([l, h]) => short_decimal_in(l, h).unwrap_or_else(|| {
+                            format!(
+                                "[{}, {}]",
+                                outward(l, Rounding::Down),
+                                outward(h, Rounding::Up)
+                            )
+                        }),
                     };
                     let mut c = vec![r.model.to_string(), v0];
                     match (r.ts, r.e) {
                         (Some(ts), Some(e)) if r.proved => {
+                            let up = |w: Option<f64>| {
+                                w.map(|w| outward(w, Rounding::Up)).unwrap_or_default()
+                            };
                             c.push(interval_text(ts));
-                            c.push(opt_num(r.width_ts));
+                            c.push(up(r.width_ts));
                             c.push(interval_text(e));
-                            c.push(opt_num(r.width_e));
+                            c.push(up(r.width_e));
                             if physical {
                                 c.push(
                                     r.ts_seconds

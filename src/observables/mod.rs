@@ -4,8 +4,10 @@
 //! - [`separation`]: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0} (eq:main_t_s) and e = V(T_s)
 //!   (eq:main_cor) on the f64 engine's dense output;
 //! - [`trajectory`]: sampled trajectories and loops (F against X), nondimensional or physical;
-//! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine.
+//! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine;
+//! - [`decimal`]: their bounds as decimals rounded outward, exactly.
 
+pub mod decimal;
 pub mod rigorous;
 pub mod separation;
 pub mod trajectory;
