@@ -215,7 +215,7 @@ fn newton_claims_no_root_it_has_not_proved() {
         let ri = Rational::from_f64(r).unwrap();
         let g = |m: f64| point(a) * (point(m) - point(r));
         let d = iv(a * w, a / w);
-        let inside = Rational::from(0) <= ri && ri <= Rational::from(1);
+        let inside = (0..=1).contains(&ri);
         match interval_newton(iv(0.0, 1.0), g, |_| Some(d)) {
             Newton::Root(t) => {
                 roots += 1;
@@ -326,7 +326,9 @@ fn separation_needs_both_conditions_at_once() {
     // T_s = inf{T : F ≤ 0 ∧ V ≥ 0}, exact for affine outputs: a zero of F while V < 0, or of V
     // while F > 0, is not a separation
     let exact = |x: f64| Rational::from_f64(x).unwrap();
-    let cases: [((f64, f64), (f64, f64), Option<Rational>); 10] = [
+    // (F as (slope, value at 0), V likewise, T_s)
+    type Case = ((f64, f64), (f64, f64), Option<Rational>);
+    let cases: [Case; 10] = [
         // the condition holds from the start: T_s = 0 (F increasing through 0 later, V > 0: its
         // zero is where the condition ends, not where it starts)
         ((1.0, -0.6), (0.0, 1.0), Some(exact(0.0))),

@@ -41,7 +41,7 @@ GUARDS = [
      "the kink check's side (the rate of x_i instead of s·x_i)"),
     ("kink-old", "src/engines/taylor/step.rs",
      [("        if sd.inf() > 0.0 {", "        if (side[i] as f64) * d.inf() > 0.0 {"),
-      ("        if !(sd.sup() < 0.0) {", "        if (side[i] as f64) * d.sup() >= 0.0 {")],
+      ("        if sd.sup() >= 0.0 {", "        if (side[i] as f64) * d.sup() >= 0.0 {")],
      "the kink check as it was before issue #12 (right for s = +1 only)"),
     ("span", "src/engines/taylor/step.rs",
      [("    (t1, span(super::flow::tau(point(t1), t0).sup()))",

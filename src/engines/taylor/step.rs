@@ -432,8 +432,9 @@ pub fn cut_at_kinks<const N: usize>(
         if sd.inf() > 0.0 {
             continue; // moving away from 0 all along: s·x_i stays ≥ s·x_i(t0) > 0
         }
-        // neither away (above) nor provably towards 0: unresolved (NaN and empty included)
-        if !(sd.sup() < 0.0) {
+        // neither away (above) nor provably towards 0: unresolved (sd is not empty, so its
+        // bounds are numbers)
+        if sd.sup() >= 0.0 {
             return KinkCut::Unresolved;
         }
         // towards 0: is the end still on the side?
