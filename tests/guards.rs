@@ -12,6 +12,7 @@
 //! | grazing: undecidable, never guessed | `a_grazing_event_is_undecided` |
 //! | which zero is a separation (F's while V > 0, V's while F < 0) | `separation_needs_both_conditions_at_once` |
 //! | the condition proved on a box (after an undecided stretch) | `the_condition_holds_only_when_both_parts_are_proved` |
+//! | dense output of the whole flow, at and between piece boundaries | `the_proved_flow_holds_the_harmonic_solution_everywhere` |
 //!
 //! References are exact: rationals (the doubles' values) against MPFR at 256 bits.
 
@@ -433,4 +434,55 @@ fn the_condition_holds_only_when_both_parts_are_proved() {
     assert!(!holds((0.5, 1.0), (0.5, 1.0)), "F > 0");
     assert!(!holds((-1.0, -0.5), (-1.0, -0.5)), "V < 0");
     assert!(!holds((0.5, 1.0), (-1.0, -0.5)), "neither");
+}
+
+#[test]
+fn the_proved_flow_holds_the_harmonic_solution_everywhere() {
+    // dense output of the whole proved flow (`Flow::enclose`): X = Z = −sin T, V = −cos T at
+    // every piece boundary (where two pieces meet and their enclosures are intersected), at
+    // points inside the pieces, and nothing outside [0, T_end]
+    let p = NdParams::<Interval>::with_admissibility(
+        ModelKind::Shc,
+        Admissibility::Closed,
+        point(0.0),
+        point(0.0),
+        point(0.5),
+        point(0.0),
+        point(1.0),
+        point(1.0),
+    )
+    .unwrap();
+    let flow = rigorous_impact(&Shc::new(p), &TaylorOptions::default())
+        .unwrap()
+        .flow;
+    assert!(flow.len() > 10);
+    let check = |t: f64| {
+        let b = flow
+            .enclose(t)
+            .unwrap_or_else(|| panic!("no enclosure at {t}"));
+        let tf = Float::with_val(PREC, t);
+        let x = -Float::with_val(PREC, tf.sin_ref());
+        let v = -Float::with_val(PREC, tf.cos_ref());
+        assert!(
+            encloses(b[0], &x) && encloses(b[1], &x),
+            "X({t}) = {x} ∉ {b:?}"
+        );
+        assert!(encloses(b[2], &v), "V({t}) = {v} ∉ {:?}", b[2]);
+        assert!(b.iter().all(|c| c.wid() < 1e-9), "{t}: {b:?}");
+    };
+    let mut times = 0;
+    for piece in &flow.pieces {
+        let (t0, t1) = (piece.t0(), piece.t1());
+        for i in 0..=4 {
+            check(t0 + (t1 - t0) * i as f64 / 4.0);
+            times += 1;
+        }
+    }
+    for i in 0..=1000 {
+        check(flow.t_end() * i as f64 / 1000.0);
+    }
+    assert!(times > 50);
+    assert!(flow.enclose(-1e-300).is_none());
+    assert!(flow.enclose(flow.t_end().next_up()).is_none());
+    assert!(flow.enclose(f64::NAN).is_none());
 }
