@@ -241,22 +241,28 @@ fn newton_claims_no_root_it_has_not_proved() {
     assert!(undecided_outside > 100, "{undecided_outside}");
 }
 
+/// B = Γ = σ = 0, p = n = 1 (the closed admissible set): Z = X, X″ = −X.
+fn harmonic() -> Shc<Interval> {
+    Shc::new(
+        NdParams::<Interval>::with_admissibility(
+            ModelKind::Shc,
+            Admissibility::Closed,
+            point(0.0),
+            point(0.0),
+            point(0.5),
+            point(0.0),
+            point(1.0),
+            point(1.0),
+        )
+        .unwrap(),
+    )
+}
+
 #[test]
 fn harmonic_separation_encloses_pi_exactly() {
     // B = Γ = σ = 0, p = n = 1: Z = X, X″ = −X from X = 0, V = −1: F = sin T, V = −cos T,
     // T_s = π and e = 1 — compared with π itself, not a double near it
-    let p = NdParams::<Interval>::with_admissibility(
-        ModelKind::Shc,
-        Admissibility::Closed,
-        point(0.0),
-        point(0.0),
-        point(0.5),
-        point(0.0),
-        point(1.0),
-        point(1.0),
-    )
-    .unwrap();
-    let r = rigorous_impact(&Shc::new(p), &TaylorOptions::default()).unwrap();
+    let r = rigorous_impact(&harmonic(), &TaylorOptions::default()).unwrap();
     let pi = Float::with_val(PREC, rug::float::Constant::Pi);
     assert!(encloses(r.ts, &pi), "π ∉ {:?}", r.ts);
     assert!(encloses(r.e, &Float::with_val(PREC, 1)), "1 ∉ {:?}", r.e);
@@ -441,18 +447,7 @@ fn the_proved_flow_holds_the_harmonic_solution_everywhere() {
     // dense output of the whole proved flow (`Flow::enclose`): X = Z = −sin T, V = −cos T at
     // every piece boundary (where two pieces meet and their enclosures are intersected), at
     // points inside the pieces, and nothing outside [0, T_end]
-    let p = NdParams::<Interval>::with_admissibility(
-        ModelKind::Shc,
-        Admissibility::Closed,
-        point(0.0),
-        point(0.0),
-        point(0.5),
-        point(0.0),
-        point(1.0),
-        point(1.0),
-    )
-    .unwrap();
-    let flow = rigorous_impact(&Shc::new(p), &TaylorOptions::default())
+    let flow = rigorous_impact(&harmonic(), &TaylorOptions::default())
         .unwrap()
         .flow;
     assert!(flow.len() > 10);

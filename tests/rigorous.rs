@@ -46,19 +46,24 @@ fn float_values_inside(kind: ModelKind, base: &str, speeds: &[f64], e: Interval)
 }
 
 /// (rigorous e, rigorous T_s, float e at tight tolerance) for a Table 1 set at v0.
-fn case(kind: ModelKind, base: &str, v0: &str) -> (Interval, Interval, f64) {
-    let bi = NdParams::<Interval>::parse(kind, base).unwrap();
-    let bf = NdParams::<f64>::parse(kind, base).unwrap();
-    let pi = nd_from_base(kind, &bi, &iv(v0)).unwrap();
-    let pf = nd_from_base(kind, &bf, &v0.parse::<f64>().unwrap()).unwrap();
-    let tight = FloatOptions {
+/// The float engine at a tight tolerance (rtol 1e-13, atol 1e-15).
+fn tight() -> FloatOptions {
+    FloatOptions {
         ode: Options {
             rtol: 1e-13,
             atol: 1e-15,
             ..Options::paper()
         },
         ..Default::default()
-    };
+    }
+}
+
+fn case(kind: ModelKind, base: &str, v0: &str) -> (Interval, Interval, f64) {
+    let bi = NdParams::<Interval>::parse(kind, base).unwrap();
+    let bf = NdParams::<f64>::parse(kind, base).unwrap();
+    let pi = nd_from_base(kind, &bi, &iv(v0)).unwrap();
+    let pf = nd_from_base(kind, &bf, &v0.parse::<f64>().unwrap()).unwrap();
+    let tight = tight();
     let opts = TaylorOptions::default();
     match kind {
         ModelKind::Shc => {
@@ -115,14 +120,7 @@ fn entire_integer_exponents_are_proved() {
     // a whole-number n or p ≥ 3 makes |w|^(q−1)w or |w|^q an entire power; these exited 101
     // ("a recurrence power", issue #12). Each is proved, tight, and holds the tight-tolerance
     // float value
-    let tight = FloatOptions {
-        ode: Options {
-            rtol: 1e-13,
-            atol: 1e-15,
-            ..Options::paper()
-        },
-        ..Default::default()
-    };
+    let tight = tight();
     let cases = [
         (ModelKind::Shc, "1,0,0.5,1,3,1.2"),
         (ModelKind::Shc, "1,0,0.5,1,4,1.2"),
