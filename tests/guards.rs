@@ -189,6 +189,34 @@ fn q_inverse_encloses_the_exact_inverse() {
     }
     // the transpose alone is not the inverse for most entries: the test has teeth
     assert!(strict > 1000, "only {strict} entries where Q⁻¹ ≠ Qᵀ");
+    // far from orthogonal (‖I − QᵀQ‖ up to 0.49), where the Neumann bound e/(1 − e)·‖R‖ is
+    // nearly tight: diagonal Q, Q⁻¹ − Qᵀ = diag(1/q − q)
+    let mut far = 0;
+    for a in [0.72, 0.75, 0.8, 0.9, 0.99] {
+        for b in [1.01, 1.1, 1.15, 1.2] {
+            let q = [[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, 1.0]];
+            let Some(qi) = inverse_enclosure(&q) else {
+                continue;
+            };
+            far += 1;
+            let exact = exact_inverse(&q);
+            for i in 0..3 {
+                for j in 0..3 {
+                    let (lo, hi) = (
+                        Rational::from_f64(qi[i][j].inf()).unwrap(),
+                        Rational::from_f64(qi[i][j].sup()).unwrap(),
+                    );
+                    assert!(
+                        lo <= exact[i][j] && exact[i][j] <= hi,
+                        "diag({a}, {b}, 1), ({i},{j}): {} ∉ {:?}",
+                        exact[i][j].to_f64(),
+                        qi[i][j]
+                    );
+                }
+            }
+        }
+    }
+    assert!(far >= 15, "{far}");
 }
 
 #[test]
