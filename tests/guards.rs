@@ -152,6 +152,31 @@ fn exact_inverse(q: &[[f64; 3]; 3]) -> [[Rational; 3]; 3] {
     std::array::from_fn(|i| std::array::from_fn(|j| minor(j, i) / det.clone()))
 }
 
+/// Asserts that every entry of the enclosure `qi` of Q⁻¹ holds the exact inverse (as
+/// rationals); returns the exact inverse.
+fn inverse_holds_exact(
+    q: &[[f64; 3]; 3],
+    qi: &[[Interval; 3]; 3],
+    what: &str,
+) -> [[Rational; 3]; 3] {
+    let exact = exact_inverse(q);
+    for i in 0..3 {
+        for j in 0..3 {
+            let (lo, hi) = (
+                Rational::from_f64(qi[i][j].inf()).unwrap(),
+                Rational::from_f64(qi[i][j].sup()).unwrap(),
+            );
+            assert!(
+                lo <= exact[i][j] && exact[i][j] <= hi,
+                "{what}, ({i},{j}): {} ∉ {:?}",
+                exact[i][j].to_f64(),
+                qi[i][j]
+            );
+        }
+    }
+    exact
+}
+
 #[test]
 fn q_inverse_encloses_the_exact_inverse() {
     // Q from rotations in doubles is orthogonal only up to rounding: Q⁻¹ ≠ Qᵀ, and the
@@ -167,19 +192,9 @@ fn q_inverse_encloses_the_exact_inverse() {
             [0.0, sb, cb],
         ];
         let qi = inverse_enclosure(&q).expect("near-orthogonal");
-        let exact = exact_inverse(&q);
+        let exact = inverse_holds_exact(&q, &qi, &format!("k = {k}"));
         for i in 0..3 {
             for j in 0..3 {
-                let (lo, hi) = (
-                    Rational::from_f64(qi[i][j].inf()).unwrap(),
-                    Rational::from_f64(qi[i][j].sup()).unwrap(),
-                );
-                assert!(
-                    lo <= exact[i][j] && exact[i][j] <= hi,
-                    "k = {k}, ({i},{j}): {} ∉ {:?}",
-                    exact[i][j].to_f64(),
-                    qi[i][j]
-                );
                 assert!(qi[i][j].wid() < 1e-14);
                 if exact[i][j] != Rational::from_f64(q[j][i]).unwrap() {
                     strict += 1;
@@ -199,21 +214,7 @@ fn q_inverse_encloses_the_exact_inverse() {
                 continue;
             };
             far += 1;
-            let exact = exact_inverse(&q);
-            for i in 0..3 {
-                for j in 0..3 {
-                    let (lo, hi) = (
-                        Rational::from_f64(qi[i][j].inf()).unwrap(),
-                        Rational::from_f64(qi[i][j].sup()).unwrap(),
-                    );
-                    assert!(
-                        lo <= exact[i][j] && exact[i][j] <= hi,
-                        "diag({a}, {b}, 1), ({i},{j}): {} ∉ {:?}",
-                        exact[i][j].to_f64(),
-                        qi[i][j]
-                    );
-                }
-            }
+            inverse_holds_exact(&q, &qi, &format!("diag({a}, {b}, 1)"));
         }
     }
     assert!(far >= 15, "{far}");

@@ -74,7 +74,10 @@ def run(name, path, edits, what):
             text = text.replace(old, new)
         open(f, "w").write(text)
         env = dict(os.environ)
-        env.setdefault("CARGO_TARGET_DIR", os.path.join(ROOT, "target", "guard-mutants"))
+        # a target dir of its own: the mutated copies build artifacts under the same names as the
+        # work tree (cargo hashes paths relative to the workspace), and a shared dir would leave
+        # a mutant where a later ordinary build believes it is up to date
+        env["CARGO_TARGET_DIR"] = os.path.join(ROOT, "target", "guard-mutants")
         t0 = time.time()
         p = subprocess.run(["cargo", "test", "--release", "--no-fail-fast", *TESTS],
                            cwd=tmp, env=env, capture_output=True, text=True)
