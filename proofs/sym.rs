@@ -150,6 +150,12 @@ impl Real for PSym {
     fn sqrt(&self) -> Self {
         Self::interval(Real::sqrt(&self.iv))
     }
+    fn ln(&self) -> Self {
+        Self::interval(Real::ln(&self.iv))
+    }
+    fn sgn(&self) -> Self {
+        Self::interval(Real::sgn(&self.iv))
+    }
     fn pow(&self, y: &Self) -> Self {
         Self::interval(Real::pow(&self.iv, &y.iv))
     }

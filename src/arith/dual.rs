@@ -6,9 +6,15 @@
 //! |---|---|
 //! | a·b | a′b + ab′ |
 //! | a/b | (a′b − ab′)/b² |
-//! | \|a\| | sign(a)·a′ (undefined at a = 0) |
-//! | \|a\|^(q−1)a | q\|a\|^(q−1)·a′ |
-//! | \|a\|^q | q\|a\|^(q−1)a·a′ |
+//! | \|a\| | sgn(a)·a′ (at a = 0: [−1, 1]·a′ for intervals, Clarke's derivative) |
+//! | \|a\|^(q−1)a | q\|a\|^(q−1)·a′ + \|a\|^(q−1)a·ln\|a\|·q′ |
+//! | \|a\|^q | q\|a\|^(q−1)a·a′ + \|a\|^q·ln\|a\|·q′ |
+//! | a^y (a > 0) | y a^(y−1)·a′ + a^y·ln a·y′ |
+//! | ln a | a′/a |
+//!
+//! A derivative in the exponent (a model's n or p given as a range, carried as a variable by
+//! the rigorous engine) needs ln|a|: at a = 0 it is unbounded, and so is the result's
+//! derivative (an honest enclosure, never a wrong one).
 
 use super::dot::Dot;
 use super::real::Real;
@@ -37,6 +43,18 @@ impl<R: Real, const M: usize> Dual<R, M> {
     /// Seeds a point as M independent variables.
     pub fn seed(x: &[R; M]) -> [Self; M] {
         std::array::from_fn(|i| Self::variable(x[i].clone(), i))
+    }
+    /// u = w^q (any of the powers) differentiated in the base only, plus the exponent's part
+    /// u·ln(w)·q′ when q has a derivative (`ln` computes ln w, or ln|w|).
+    fn with_exponent_part(mut self, q: &Self, ln: impl FnOnce() -> R) -> Self {
+        if q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
+            return self;
+        }
+        let ul = self.v.clone() * ln();
+        for (d, dq) in self.d.iter_mut().zip(&q.d) {
+            *d = d.clone() + ul.clone() * dq.clone();
+        }
+        self
     }
     fn chain(&self, v: R, dv: R) -> Self {
         Self {
@@ -112,7 +130,7 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     fn abs(&self) -> Self {
         let s = match self.v.sign() {
             Some(s) => R::from_int(s as i64),
-            None => R::unbounded(),
+            None => Real::sgn(&self.v),
         };
         self.chain(Real::abs(&self.v), s)
     }
@@ -132,7 +150,7 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
         let dq = if q.as_integer() == Some(1) {
             match self.v.sign() {
                 Some(s) => R::from_int(s as i64),
-                None => R::unbounded(),
+                None => Real::sgn(&self.v),
             }
         } else if self.v.sign().is_some() {
             q.clone() * u.clone() / self.v.clone()
@@ -143,9 +161,8 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     }
 }
 
-/// Duals over a field are a field for the tape's recurrences: exponents (the models' n, p) are
-/// constants, so `pow`/`spow`/`apow` differentiate in the base only (a non-constant exponent
-/// gives an unbounded derivative, never a wrong one).
+/// Duals over a field are a field for the tape's recurrences; `pow`/`spow`/`apow`
+/// differentiate in the base and, when it has a derivative, in the exponent.
 /// Σ aⱼ·bⱼ over duals, one accumulator per component: (Σ aⱼbⱼ).v = Σ aⱼ.v·bⱼ.v and
 /// (Σ aⱼbⱼ).dᵢ = Σ (aⱼ.v·bⱼ.dᵢ + aⱼ.dᵢ·bⱼ.v).
 pub struct DualDot<R: Real, const M: usize> {
@@ -231,25 +248,26 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
         let ds = R::one() / (R::from_int(2) * s.clone());
         self.chain(s, ds)
     }
+    fn ln(&self) -> Self {
+        let dl = R::one() / self.v.clone();
+        self.chain(self.v.ln(), dl)
+    }
+    fn sgn(&self) -> Self {
+        Self::constant(self.v.sgn())
+    }
     fn pow(&self, y: &Self) -> Self {
-        if !y.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
-            return Self::unbounded();
-        }
         // d/dx x^y = y x^(y−1)
         let dq = y.v.clone() * self.v.pow(&(y.v.clone() - R::one()));
-        self.chain(self.v.pow(&y.v), dq)
+        let u = self.chain(self.v.pow(&y.v), dq);
+        u.with_exponent_part(y, || self.v.ln())
     }
     fn spow(&self, q: &Self) -> Self {
-        if !q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
-            return Self::unbounded();
-        }
-        <Self as Scalar<R>>::spow(self, &q.v)
+        let u = <Self as Scalar<R>>::spow(self, &q.v);
+        u.with_exponent_part(q, || Real::abs(&self.v).ln())
     }
     fn apow(&self, q: &Self) -> Self {
-        if !q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
-            return Self::unbounded();
-        }
-        <Self as Scalar<R>>::apow(self, &q.v)
+        let u = <Self as Scalar<R>>::apow(self, &q.v);
+        u.with_exponent_part(q, || Real::abs(&self.v).ln())
     }
     fn lo(&self) -> f64 {
         self.v.lo()

@@ -162,6 +162,20 @@ impl Real for Interval {
     fn sqrt(&self) -> Self {
         Interval::sqrt(*self)
     }
+    fn ln(&self) -> Self {
+        super::elementary::ln(*self)
+    }
+    fn sgn(&self) -> Self {
+        if self.is_empty() {
+            Interval::EMPTY
+        } else if self.inf() > 0.0 {
+            const_interval!(1.0, 1.0)
+        } else if self.sup() < 0.0 {
+            const_interval!(-1.0, -1.0)
+        } else {
+            const_interval!(-1.0, 1.0)
+        }
+    }
     fn pow(&self, y: &Self) -> Self {
         // inari intersects the base with [0, ∞) silently; a base reaching below 0 is a bug.
         if self.inf() < 0.0 {

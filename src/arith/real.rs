@@ -66,6 +66,11 @@ pub trait Real:
     }
     fn abs(&self) -> Self;
     fn sqrt(&self) -> Self;
+    /// ln x for x > 0 (for an interval reaching 0 or below: every real).
+    fn ln(&self) -> Self;
+    /// sign(x): 1 for x > 0, −1 for x < 0; at 0 the interval types give [−1, 1] (the Clarke
+    /// derivative of |x|), `f64` NaN (no derivative).
+    fn sgn(&self) -> Self;
     /// x^y for x > 0.
     fn pow(&self, y: &Self) -> Self;
     /// The signed power |x|^(q−1)·x, q ≥ 1 (the Hertzian law's nonlinearity).
@@ -194,6 +199,18 @@ impl Real for f64 {
     #[inline]
     fn sqrt(&self) -> Self {
         f64::sqrt(*self)
+    }
+    fn ln(&self) -> Self {
+        f64::ln(*self)
+    }
+    fn sgn(&self) -> Self {
+        if *self > 0.0 {
+            1.0
+        } else if *self < 0.0 {
+            -1.0
+        } else {
+            f64::NAN
+        }
     }
     #[inline]
     fn pow(&self, y: &Self) -> Self {

@@ -307,6 +307,12 @@ impl Real for Ulp {
     fn sqrt(&self) -> Self {
         Self::of(Real::sqrt(&self.interval()))
     }
+    fn ln(&self) -> Self {
+        Self::of(Real::ln(&self.interval()))
+    }
+    fn sgn(&self) -> Self {
+        Self::of(Real::sgn(&self.interval()))
+    }
     fn pow(&self, y: &Self) -> Self {
         Self::of(Real::pow(&self.interval(), &y.interval()))
     }

@@ -10,6 +10,7 @@
 pub mod decimal;
 pub mod rigorous;
 pub mod separation;
+pub mod sets;
 pub mod trajectory;
 
 pub use separation::{FloatOptions, Impact, ImpactError, impact};

@@ -18,6 +18,7 @@ pub mod event;
 pub mod flow;
 pub mod lohner;
 pub mod newton;
+pub mod rec;
 pub mod step;
 pub mod tape;
 
@@ -132,6 +133,36 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
+    let tape = Tape::<Interval, N>::record(|v| {
+        let mut o = model.field(v).to_vec();
+        o.push(model.force(v));
+        o.push(model.velocity(v));
+        o
+    });
+    integrate_tape(&tape, model.initial_state(), opts)
+}
+
+/// [`integrate_to_separation`] of a recorded system: the field's N components, then the
+/// outputs F (N) and V (N + 1) of the separation condition, then any others; from `x0`. A
+/// model with parameters given as ranges is such a system (the parameters as components with
+/// ṗ = 0: [`crate::observables::sets`]).
+pub fn integrate_system<const N: usize>(
+    tape: &Tape<Interval, N>,
+    x0: [Interval; N],
+    opts: &TaylorOptions,
+) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
+    if rayon::current_thread_index().is_some() {
+        integrate_tape(tape, x0, opts)
+    } else {
+        rayon::scope(|_| integrate_tape(tape, x0, opts))
+    }
+}
+
+fn integrate_tape<const N: usize>(
+    tape: &Tape<Interval, N>,
+    x0: [Interval; N],
+    opts: &TaylorOptions,
+) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
     if opts.order < 2
         || opts.tol.is_nan()
         || opts.tol <= 0.0
@@ -143,21 +174,15 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
             width: 0.0,
         });
     }
-    let tape = Tape::<Interval, N>::record(|v| {
-        let mut o = model.field(v).to_vec();
-        o.push(model.force(v));
-        o.push(model.velocity(v));
-        o
-    });
     let switching: Vec<usize> = tape.switching().to_vec();
-    let tapes = step::Tapes::of(&tape);
+    let tapes = step::Tapes::of(tape);
     let kd = match opts.mean_value_orders {
         0 => step::jacobian_orders(opts.order),
         k => k.min(opts.order),
     };
     let mut ws = step::Workspaces::default();
     let mut ev_ws = Workspace::default();
-    let mut x = model.initial_state();
+    let mut x = x0;
     // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
     let mut rep: Option<lohner::Parallelepiped<N>> = None;
     let mut t = 0.0_f64;
@@ -224,7 +249,7 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
                 if opts.qr { rep.as_ref() } else { None },
             ) {
                 Err(_) => break None,
-                Ok(mut o) => match step::cut_at_kinks(&tape, &o, &side) {
+                Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
                     step::KinkCut::Whole => break Some(o),
                     step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
                         o.piece.truncate(tc);
@@ -257,7 +282,7 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
                             width: w,
                         });
                     }
-                    if let Some(o) = step::low_order_step(&tape, t, &x, h)
+                    if let Some(o) = step::low_order_step(tape, t, &x, h)
                         && step::width(&o.x1) - w
                             <= opts.cross_tol.max(1e-3 * w)
                                 + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
@@ -270,13 +295,13 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
             }
         };
         let t1 = out.piece.t1();
-        let verdict = event::scan_piece(&tape, &mut ev_ws, &out.piece);
+        let verdict = event::scan_piece(tape, &mut ev_ws, &out.piece);
         flow.pieces.push(out.piece);
         match (verdict, pending) {
             (event::Verdict::Found(ev), None) => return Ok((flow, ev)),
             // T_s was not excluded from [p, …) but is proved by here: T_s ∈ [p, ts.sup]
             (event::Verdict::Found(ev), Some(p)) => {
-                let ev = event::between(&tape, &flow, p, ev.ts.sup());
+                let ev = event::between(tape, &flow, p, ev.ts.sup());
                 return Ok((flow, ev));
             }
             (event::Verdict::Undecided(tt), None) => pending = Some(tt.inf()),
@@ -285,8 +310,8 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
         if let Some(p) = pending {
             // the condition fails on [0, p) (every earlier time was cleared); once it provably
             // holds at a later time t1, T_s ∈ [p, t1]
-            if event::holds(&tape, &out.x1) {
-                let ev = event::between(&tape, &flow, p, t1);
+            if event::holds(tape, &out.x1) {
+                let ev = event::between(tape, &flow, p, t1);
                 return Ok((flow, ev));
             }
             if t1 - p > opts.event_slack.max(100.0 * w) {

@@ -533,7 +533,7 @@ mod tests {
     /// continued across the kink v = 0 from the side of v0.
     fn kink_toy(c: Interval, v0: f64, h: f64) -> Option<StepOut<2>> {
         let zero = Interval::try_from((0.0, 0.0)).unwrap();
-        let tape = Tape::<Interval, 2>::record(|s| vec![s[1].abs(), s[0].scale(&zero).shift(&c)]);
+        let tape = Tape::<Interval, 2>::record(|s| vec![Scalar::<Interval>::abs(&s[1]), s[0].scale(&zero).shift(&c)]);
         assert_eq!(tape.kinks(), &[1]);
         let tapes = Tapes::of(&tape);
         let mut ws = Workspaces::default();

@@ -13,11 +13,11 @@
 //! constant coefficient does not have a certain sign has no expansion, and the jet fails with
 //! [`JetError::Branch`] naming the component — the caller then takes a low-order step across.
 
+pub use super::rec::Rec;
+use super::rec::Recorder;
+use crate::arith::Real;
 use crate::arith::series::{div_k, exp_log_k, log_k, mul_k, pow_factors, pow_k};
-use crate::arith::{Real, Scalar};
-use std::cell::RefCell;
-use std::ops::{Add, Div, Mul, Neg, Sub};
-use std::rc::Rc;
+use std::sync::{Arc, Mutex};
 
 /// One recorded operation; operands are indices of earlier nodes, constants index `consts`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,78 +39,20 @@ pub enum Op {
     /// that runs the recurrence, signed?). Both are s·ũ or ũ for the same series ũ = (s w)^q,
     /// so only one recurrence is run (set up by [`Tape::record`]).
     Twin(usize, usize, usize, bool),
-}
-
-#[derive(Debug, Default)]
-struct Recorder<R> {
-    ops: Vec<Op>,
-    consts: Vec<R>,
-}
-
-/// The recording number type: each operation appends to the shared tape.
-#[derive(Clone, Debug)]
-pub struct Rec<R> {
-    tape: Rc<RefCell<Recorder<R>>>,
-    idx: usize,
-}
-
-impl<R: Real> Rec<R> {
-    fn push(&self, op: Op) -> Self {
-        let mut t = self.tape.borrow_mut();
-        t.ops.push(op);
-        Rec {
-            tape: self.tape.clone(),
-            idx: t.ops.len() - 1,
-        }
-    }
-    fn push_const(&self, c: &R, op: impl Fn(usize) -> Op) -> Self {
-        let ci = {
-            let mut t = self.tape.borrow_mut();
-            t.consts.push(c.clone());
-            t.consts.len() - 1
-        };
-        self.push(op(ci))
-    }
-}
-
-macro_rules! binop {
-    ($tr:ident, $f:ident, $op:ident) => {
-        impl<R: Real> $tr for Rec<R> {
-            type Output = Self;
-            fn $f(self, o: Self) -> Self {
-                self.push(Op::$op(self.idx, o.idx))
-            }
-        }
-    };
-}
-binop!(Add, add, Add);
-binop!(Sub, sub, Sub);
-binop!(Mul, mul, Mul);
-binop!(Div, div, Div);
-
-impl<R: Real> Neg for Rec<R> {
-    type Output = Self;
-    fn neg(self) -> Self {
-        self.push(Op::Neg(self.idx))
-    }
-}
-
-impl<R: Real> Scalar<R> for Rec<R> {
-    fn scale(&self, c: &R) -> Self {
-        self.push_const(c, |ci| Op::Scale(self.idx, ci))
-    }
-    fn shift(&self, c: &R) -> Self {
-        self.push_const(c, |ci| Op::Shift(self.idx, ci))
-    }
-    fn abs(&self) -> Self {
-        self.push(Op::Abs(self.idx))
-    }
-    fn spow(&self, q: &R) -> Self {
-        self.push_const(q, |ci| Op::Spow(self.idx, ci))
-    }
-    fn apow(&self, q: &R) -> Self {
-        self.push_const(q, |ci| Op::Apow(self.idx, ci))
-    }
+    /// A constant (index into `consts`) as a node.
+    Const(usize),
+    /// sign(w) (piecewise constant; a switching operation like |·|).
+    Sign(usize),
+    /// |w|^(q−1) w with the exponent a node constant in time (a parameter given as a range).
+    SpowV(usize, usize),
+    /// |w|^q with the exponent a node constant in time.
+    ApowV(usize, usize),
+    /// x^y (x > 0), both constant in time.
+    Pow(usize, usize),
+    /// ln x (x > 0), constant in time.
+    Ln(usize),
+    /// √x, constant in time.
+    Sqrt(usize),
 }
 
 /// Why a jet does not exist.
@@ -137,6 +79,9 @@ pub struct Tape<R, const N: usize> {
     /// of |Z|^(p−1)Z and |Z|^n), which keeps the series of ln|w| for all of them (see
     /// [`pow_node`]); `None` for every other node.
     log_lead: Vec<Option<usize>>,
+    /// Per node: constant in time (only constants and parameter variables below it; see
+    /// [`Tape::record_with`]). Expanded as constants: the value at order 0, zeros above.
+    tconst: Vec<bool>,
 }
 
 /// A key identifying an operation up to its constants' values (for common subexpressions).
@@ -148,24 +93,43 @@ enum Key {
 impl<R: Real, const N: usize> Tape<R, N> {
     /// Records `f` (returning the field's N components followed by any extra outputs).
     pub fn record(f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>) -> Self {
-        let rec = Rc::new(RefCell::new(Recorder {
+        Self::record_with(std::array::from_fn(|_| None), f)
+    }
+
+    /// [`Tape::record`] of a system whose components `i` with `params[i] = Some(range)` are
+    /// parameters: constant in time (their field component must be the constant 0), with
+    /// values in `range` (what the model's checks on its parameters see, [`Rec`]).
+    pub fn record_with(
+        params: [Option<R>; N],
+        f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>,
+    ) -> Self {
+        let rec = Arc::new(Mutex::new(Recorder {
             ops: Vec::new(),
             consts: Vec::new(),
+            tconst: Vec::new(),
         }));
-        let vars: [Rec<R>; N] = std::array::from_fn(|i| {
-            rec.borrow_mut().ops.push(Op::Var(i));
-            Rec {
-                tape: rec.clone(),
-                idx: i,
-            }
-        });
+        let mut params = params.into_iter();
+        let vars: [Rec<R>; N] = std::array::from_fn(|i| Rec::var(&rec, i, params.next().flatten()));
         let outs = f(&vars);
         assert!(outs.len() >= N, "the first N outputs must be the field");
-        let outputs: Vec<usize> = outs.iter().map(|o| o.idx).collect();
+        let outputs: Vec<usize> = outs.iter().map(|o| o.node_on(&rec)).collect();
+        for (i, v) in vars.iter().enumerate() {
+            let t = rec.lock().expect("tape");
+            if t.tconst[v.idx] {
+                let zero = matches!(t.ops[outputs[i]], Op::Const(c) if t.consts[c].lo() == 0.0 && t.consts[c].hi() == 0.0);
+                assert!(zero, "the field of parameter component {i} must be 0");
+            }
+        }
         drop(outs);
         drop(vars);
-        let Recorder { ops: raw, consts } =
-            Rc::try_unwrap(rec).expect("tape still shared").into_inner();
+        let Recorder {
+            ops: raw,
+            consts,
+            tconst: raw_tconst,
+        } = Arc::try_unwrap(rec)
+            .expect("tape still shared")
+            .into_inner()
+            .expect("tape");
         // Common subexpressions (the force output repeats the field's powers): an operation on
         // the same operands with constants of the same value is recorded once.
         let cbits = |ci: usize| (consts[ci].lo().to_bits(), consts[ci].hi().to_bits());
@@ -198,6 +162,13 @@ impl<R: Real, const N: usize> Tape<R, N> {
                     Op::Apow(m(a), c),
                     Key::Op(10, m(a), 0, cbits(c).0, cbits(c).1),
                 ),
+                Op::Const(c) => (Op::Const(c), Key::Op(11, 0, 0, cbits(c).0, cbits(c).1)),
+                Op::Sign(a) => (Op::Sign(m(a)), Key::Op(12, m(a), 0, 0, 0)),
+                Op::SpowV(a, b) => (Op::SpowV(m(a), m(b)), Key::Op(13, m(a), m(b), 0, 0)),
+                Op::ApowV(a, b) => (Op::ApowV(m(a), m(b)), Key::Op(14, m(a), m(b), 0, 0)),
+                Op::Pow(a, b) => (Op::Pow(m(a), m(b)), Key::Op(15, m(a), m(b), 0, 0)),
+                Op::Ln(a) => (Op::Ln(m(a)), Key::Op(16, m(a), 0, 0, 0)),
+                Op::Sqrt(a) => (Op::Sqrt(m(a)), Key::Op(17, m(a), 0, 0, 0)),
                 Op::Twin(..) => unreachable!("not recorded"),
             };
             // |w|^(q−1)w = w^q (q odd) and |w|^q = w^q (q even) are entire: for q ≥ 3 they are
@@ -216,11 +187,20 @@ impl<R: Real, const N: usize> Tape<R, N> {
             });
         }
         let outputs: Vec<usize> = outputs.iter().map(|&o| map[o]).collect::<Vec<usize>>();
+        let mut tconst: Vec<bool> = Vec::with_capacity(ops.len());
+        for op in &ops {
+            let c = match *op {
+                Op::Var(v) => raw_tconst[v],
+                Op::Const(_) => true,
+                _ => operands(op).all(|a| tconst[a]),
+            };
+            tconst.push(c);
+        }
         // Twins: |w|^q after |w|^(q−1)w of the same w and q (or the reverse) reuse its series.
         for i in 0..ops.len() {
             let (a, c, signed) = match ops[i] {
-                Op::Spow(a, c) => (a, c, true),
-                Op::Apow(a, c) => (a, c, false),
+                Op::Spow(a, c) if !tconst[i] => (a, c, true),
+                Op::Apow(a, c) if !tconst[i] => (a, c, false),
                 _ => continue,
             };
             if analytic_power(&consts[c], true) || analytic_power(&consts[c], false) {
@@ -236,18 +216,28 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 ops[i] = Op::Twin(a, c, j, signed);
             }
         }
+        // the operands of non-analytic operations (a power with a variable exponent is never
+        // taken as analytic)
+        let non_analytic = |op: &Op| -> Option<(usize, bool)> {
+            match *op {
+                Op::Abs(a) | Op::Sign(a) => Some((a, true)),
+                Op::Spow(a, q) | Op::Twin(a, q, _, true) if !analytic_power(&consts[q], true) => {
+                    Some((a, false))
+                }
+                Op::Apow(a, q) | Op::Twin(a, q, _, false)
+                    if !analytic_power(&consts[q], false) =>
+                {
+                    Some((a, false))
+                }
+                Op::SpowV(a, _) | Op::ApowV(a, _) => Some((a, false)),
+                _ => None,
+            }
+        };
         let mut switching: Vec<usize> = ops
             .iter()
-            .filter_map(|op| match *op {
-                Op::Abs(a) => Some((a, None)),
-                Op::Spow(a, q) | Op::Twin(a, q, _, true) => Some((a, Some((q, true)))),
-                Op::Apow(a, q) | Op::Twin(a, q, _, false) => Some((a, Some((q, false)))),
-                _ => None,
-            })
-            .filter(|&(_, q)| match q {
-                None => true,
-                Some((ci, signed)) => !analytic_power(&consts[ci], signed),
-            })
+            .zip(&tconst)
+            .filter(|&(_, &c)| !c)
+            .filter_map(|(op, _)| non_analytic(op))
             .filter_map(|(a, _)| match ops[a] {
                 Op::Var(i) => Some(i),
                 _ => None,
@@ -259,28 +249,28 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .iter()
             .copied()
             .filter(|&v| {
-                ops.iter().all(|op| match *op {
-                    Op::Spow(a, q) | Op::Twin(a, q, _, true) => {
-                        a != v || analytic_power(&consts[q], true)
+                // v is the operand of |·| and sign only (a kink), never of a branch point
+                ops.iter().zip(&tconst).all(|(op, &c)| {
+                    c || match non_analytic(op) {
+                        Some((a, kink)) => kink || !matches!(ops[a], Op::Var(i) if i == v),
+                        None => true,
                     }
-                    Op::Apow(a, q) | Op::Twin(a, q, _, false) => {
-                        a != v || analytic_power(&consts[q], false)
-                    }
-                    _ => true,
                 })
             })
             .collect();
         // The powers of an operand share the series of ln|w| (one recurrence for the log, then
         // one single sum per power)
-        let recurrence = |op: &Op| match *op {
+        let recurrence = |i: usize| match ops[i] {
+            _ if tconst[i] => None,
             Op::Spow(a, c) if !analytic_power(&consts[c], true) => Some(a),
             Op::Apow(a, c) if !analytic_power(&consts[c], false) => Some(a),
+            Op::SpowV(a, _) | Op::ApowV(a, _) => Some(a),
             _ => None,
         };
         let log_lead: Vec<Option<usize>> = (0..ops.len())
             .map(|i| {
-                let a = recurrence(&ops[i])?;
-                (0..ops.len()).find(|&j| recurrence(&ops[j]) == Some(a))
+                let a = recurrence(i)?;
+                (0..ops.len()).find(|&j| recurrence(j) == Some(a))
             })
             .collect();
         Self {
@@ -290,6 +280,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             switching,
             kinks,
             log_lead,
+            tconst,
         }
     }
 
@@ -302,6 +293,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             switching: self.switching.clone(),
             kinks: self.kinks.clone(),
             log_lead: self.log_lead.clone(),
+            tconst: self.tconst.clone(),
         }
     }
 
@@ -333,27 +325,47 @@ impl<R: Real, const N: usize> Tape<R, N> {
     pub fn eval_on(&self, x: &[R; N], side: &[i8; N]) -> Vec<R> {
         let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
         for op in &self.ops {
-            let c = match *op {
-                Op::Var(i) => x[i].clone(),
-                Op::Add(a, b) => v[a].clone() + v[b].clone(),
-                Op::Sub(a, b) => v[a].clone() - v[b].clone(),
-                Op::Mul(a, b) => v[a].clone() * v[b].clone(),
-                Op::Div(a, b) => v[a].clone() / v[b].clone(),
-                Op::Neg(a) => -v[a].clone(),
-                Op::Scale(a, c) => v[a].clone() * self.consts[c].clone(),
-                Op::Shift(a, c) => v[a].clone() + self.consts[c].clone(),
-                Op::Abs(a) => match self.ops[a] {
-                    Op::Var(j) if side[j] > 0 => v[a].clone(),
-                    Op::Var(j) if side[j] < 0 => -v[a].clone(),
-                    _ => Real::abs(&v[a]),
-                },
-                Op::Spow(a, q) => Real::spow(&v[a], &self.consts[q]),
-                Op::Apow(a, q) | Op::Twin(a, q, _, false) => Real::apow(&v[a], &self.consts[q]),
-                Op::Twin(a, q, _, true) => Real::spow(&v[a], &self.consts[q]),
-            };
+            let c = self.op_value(op, |a| &v[a], x, side);
             v.push(c);
         }
         self.outputs.iter().map(|&o| v[o].clone()).collect()
+    }
+
+    /// The value of one operation from its operands' values `v` (state `x`, kinks continued
+    /// from `side`).
+    #[inline]
+    fn op_value<'a>(&self, op: &Op, v: impl Fn(usize) -> &'a R, x: &[R; N], side: &[i8; N]) -> R
+    where
+        R: 'a,
+    {
+        match *op {
+            Op::Var(i) => x[i].clone(),
+            Op::Const(c) => self.consts[c].clone(),
+            Op::Add(a, b) => v(a).clone() + v(b).clone(),
+            Op::Sub(a, b) => v(a).clone() - v(b).clone(),
+            Op::Mul(a, b) => v(a).clone() * v(b).clone(),
+            Op::Div(a, b) => v(a).clone() / v(b).clone(),
+            Op::Neg(a) => -v(a).clone(),
+            Op::Scale(a, c) => v(a).clone() * self.consts[c].clone(),
+            Op::Shift(a, c) => v(a).clone() + self.consts[c].clone(),
+            Op::Abs(a) => match self.ops[a] {
+                Op::Var(j) if side[j] > 0 => v(a).clone(),
+                Op::Var(j) if side[j] < 0 => -v(a).clone(),
+                _ => Real::abs(v(a)),
+            },
+            Op::Sign(a) => match self.ops[a] {
+                Op::Var(j) if side[j] != 0 => R::from_int(side[j] as i64),
+                _ => Real::sgn(v(a)),
+            },
+            Op::Spow(a, q) => Real::spow(v(a), &self.consts[q]),
+            Op::Apow(a, q) | Op::Twin(a, q, _, false) => Real::apow(v(a), &self.consts[q]),
+            Op::Twin(a, q, _, true) => Real::spow(v(a), &self.consts[q]),
+            Op::SpowV(a, q) => Real::spow(v(a), v(q)),
+            Op::ApowV(a, q) => Real::apow(v(a), v(q)),
+            Op::Pow(a, b) => Real::pow(v(a), v(b)),
+            Op::Ln(a) => Real::ln(v(a)),
+            Op::Sqrt(a) => Real::sqrt(v(a)),
+        }
     }
 
     /// The Taylor coefficients x_0..x_K of the solution of x′ = f(x), x(0) = x0 (a point or a
@@ -385,8 +397,40 @@ impl<R: Real, const N: usize> Tape<R, N> {
         let Workspace { c, scratch, sign } = ws;
         for k in 0..k1 {
             for (i, op) in self.ops.iter().enumerate() {
+                if self.tconst[i] {
+                    // a constant in time: its value, zeros above
+                    c[i * k1 + k] = if k == 0 {
+                        self.op_value(op, |a| &c[a * k1], x0, side)
+                    } else {
+                        R::zero()
+                    };
+                    continue;
+                }
                 let at = |n: usize, j: usize| &c[n * k1 + j];
                 let val = match *op {
+                    Op::Const(..) | Op::Pow(..) | Op::Ln(..) | Op::Sqrt(..) => {
+                        unreachable!("constant in time")
+                    }
+                    Op::Sign(a) => {
+                        if k == 0 {
+                            sign[i] = match self.ops[a] {
+                                Op::Var(v) if side[v] != 0 => side[v],
+                                _ => self.sign_of(a, at(a, 0))?,
+                            };
+                            R::from_int(sign[i] as i64)
+                        } else {
+                            R::zero()
+                        }
+                    }
+                    Op::SpowV(a, q) | Op::ApowV(a, q) => {
+                        let signed = matches!(op, Op::SpowV(..));
+                        if k == 0 {
+                            sign[i] = self.sign_of(a, at(a, 0))?;
+                        }
+                        let lead = self.log_lead[i].expect("a recurrence power");
+                        let qv = c[q * k1].clone();
+                        pow_node(c, scratch, sign[i], a, i, lead, k, k1, &qv, signed)
+                    }
                     Op::Var(v) => {
                         if k == 0 {
                             x0[v].clone()
@@ -483,6 +527,31 @@ impl<R: Real, const N: usize> Tape<R, N> {
             },
         })
     }
+}
+
+/// The operand nodes of an operation.
+fn operands(op: &Op) -> impl Iterator<Item = usize> {
+    let (a, b) = match *op {
+        Op::Var(_) | Op::Const(_) => (None, None),
+        Op::Add(a, b)
+        | Op::Sub(a, b)
+        | Op::Mul(a, b)
+        | Op::Div(a, b)
+        | Op::SpowV(a, b)
+        | Op::ApowV(a, b)
+        | Op::Pow(a, b) => (Some(a), Some(b)),
+        Op::Neg(a)
+        | Op::Scale(a, _)
+        | Op::Shift(a, _)
+        | Op::Abs(a)
+        | Op::Sign(a)
+        | Op::Spow(a, _)
+        | Op::Apow(a, _)
+        | Op::Twin(a, ..)
+        | Op::Ln(a)
+        | Op::Sqrt(a) => (Some(a), None),
+    };
+    a.into_iter().chain(b)
 }
 
 /// Records w^q (q ≥ 1) as products of earlier nodes by square and multiply (at most
@@ -650,6 +719,7 @@ impl<R: Real> Workspace<R> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::arith::Scalar;
     use crate::arith::series::Series;
     use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
     use inari::Interval;
@@ -689,9 +759,9 @@ mod tests {
             let signed = q % 2 == 1;
             let tape = Tape::<Interval, 2>::record(|v| {
                 let p = if signed {
-                    v[0].spow(&qi)
+                    Scalar::<Interval>::spow(&v[0], &qi)
                 } else {
-                    v[0].apow(&qi)
+                    Scalar::<Interval>::apow(&v[0], &qi)
                 };
                 vec![v[1].scale(&zero).shift(&one), p]
             });
@@ -715,7 +785,7 @@ mod tests {
 
     #[test]
     fn tape_jet_equals_series_jet() {
-        let shc = Shc::new(
+        let shc = Shc::<f64>::new(
             NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap(),
         );
         let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());
@@ -735,7 +805,7 @@ mod tests {
                 );
             }
         }
-        let mx = Maxwell::new(
+        let mx = Maxwell::<f64>::new(
             NdParams::parse(ModelKind::Maxwell, "0.44,-0.418,0.113,0.00785,1.27,3.14").unwrap(),
         );
         let tape = Tape::<f64, 4>::record(|v| mx.field(v).to_vec());
@@ -832,7 +902,7 @@ mod tests {
 
     #[test]
     fn switching_components_and_branch_points_are_found() {
-        let lin = Shc::new(
+        let lin = Shc::<f64>::new(
             NdParams::with_admissibility(
                 ModelKind::Shc,
                 crate::models::Admissibility::Closed,
@@ -851,7 +921,7 @@ mod tests {
         // only |V| is a plain |·|; |X|^p, |Z|^n with p = n = 1 are powers, treated (safely) as
         // branch points
         assert_eq!(tape.kinks(), &[2]);
-        let shc = Shc::new(
+        let shc = Shc::<f64>::new(
             NdParams::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27").unwrap(),
         );
         let tape = Tape::<f64, 3>::record(|v| shc.field(v).to_vec());

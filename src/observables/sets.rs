@@ -1,0 +1,467 @@
+//! Proved T_s and e over *sets* of parameters: any of a case's inputs — the nondimensional P,
+//! the base set P* and v0, the physical parameters and v0 — given as ranges.
+//!
+//! The uncertain inputs u become components of the state with u̇ = 0, and the map from the
+//! inputs to the nondimensional parameters (𝓟(P*, v0), the nondimensionalization) is recorded
+//! on the tape with the model ([`crate::engines::taylor::rec`]): the Lohner set of the rigorous
+//! engine then carries the solution's dependence on u (their columns of its matrix A), and v0
+//! keeps its correlation with the B, Γ and σ it enters. The models stay written once: they are
+//! built with parameters of the recording type.
+//!
+//! With one uncertain input u the system also carries the first variational equation
+//! S = ∂x/∂u, Ṡ = D_x f·S + ∂_u f (the field differentiated on duals), from S(0) = 0. At the
+//! separation (F = 0 crossed with V > 0):
+//!
+//! ```text
+//! dT_s/du = −(∂F/∂u)/(dF/dT),     de/du = ∂V/∂u + (dV/dT)·dT_s/du
+//! ```
+//!
+//! (∂/∂u along the flow at fixed T, i.e. ∇F·S + ∂_u F; the implicit function theorem on
+//! F(x(T, u), u) = 0), enclosed over the whole set: every state at T_s(u), u ∈ U, lies in the
+//! event's state enclosure. The mean-value form T_s(u) ∈ T_s(û) + [dT_s/du](U − û) (û the
+//! centre, T_s(û) from a point run) is then intersected with the hull.
+
+use crate::arith::Real;
+use crate::arith::dual::Dual;
+use crate::engines::taylor::rec::Rec;
+use crate::engines::taylor::tape::{Tape, Workspace};
+use crate::engines::taylor::{RigorError, TaylorOptions, integrate_system};
+use crate::models::scaling::{PhysicalParams, nd_from_base};
+use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, ParamError, Shc};
+use inari::Interval;
+
+/// The inputs of a case, from which its nondimensional parameters are computed.
+#[derive(Clone, Debug)]
+pub enum Inputs<R> {
+    /// The nondimensional set P itself (B, Γ, κ, σ, n, p).
+    Nd(NdParams<R>),
+    /// A base set P* and the impact speed: P = 𝓟(P*, v0).
+    Base { base: NdParams<R>, v0: R },
+    /// Physical parameters and the impact speed.
+    Physical { phys: PhysicalParams<R>, v0: R },
+}
+
+/// Most uncertain inputs at once (the physical set and v0).
+pub const MAX_UNCERTAIN: usize = 10;
+
+fn nd_values<R: Clone>(p: &NdParams<R>) -> Vec<R> {
+    vec![
+        p.b.clone(),
+        p.gamma.clone(),
+        p.kappa.clone(),
+        p.sigma.clone(),
+        p.n.clone(),
+        p.p.clone(),
+    ]
+}
+
+fn nd_of<S>(v: &mut impl Iterator<Item = S>) -> NdParams<S> {
+    let mut next = || v.next().expect("an input value");
+    NdParams {
+        b: next(),
+        gamma: next(),
+        kappa: next(),
+        sigma: next(),
+        n: next(),
+        p: next(),
+    }
+}
+
+impl<R: Real> Inputs<R> {
+    /// The inputs in a fixed order (see [`Inputs::names`]).
+    pub fn values(&self) -> Vec<R> {
+        match self {
+            Inputs::Nd(p) => nd_values(p),
+            Inputs::Base { base, v0 } => {
+                let mut v = nd_values(base);
+                v.push(v0.clone());
+                v
+            }
+            Inputs::Physical { phys, v0 } => vec![
+                phys.m.clone(),
+                phys.k.clone(),
+                phys.c.clone(),
+                phys.n.clone(),
+                phys.p.clone(),
+                phys.alpha.clone(),
+                phys.beta.clone(),
+                phys.gamma.clone(),
+                phys.a.clone(),
+                v0.clone(),
+            ],
+        }
+    }
+
+    /// The names of [`Inputs::values`].
+    pub fn names(&self) -> &'static [&'static str] {
+        match self {
+            Inputs::Nd(_) => &["B", "Gamma", "kappa", "sigma", "n", "p"],
+            Inputs::Base { .. } => &["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "v0"],
+            Inputs::Physical { .. } => &[
+                "m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A", "v0",
+            ],
+        }
+    }
+
+    /// The same kind of inputs with other values (in the order of [`Inputs::values`]).
+    pub fn with_values<S: Real>(&self, vals: Vec<S>) -> Inputs<S> {
+        let mut it = vals.into_iter();
+        let out = match self {
+            Inputs::Nd(_) => Inputs::Nd(nd_of(&mut it)),
+            Inputs::Base { .. } => {
+                let base = nd_of(&mut it);
+                Inputs::Base {
+                    base,
+                    v0: it.next().expect("v0"),
+                }
+            }
+            Inputs::Physical { .. } => {
+                let mut next = || it.next().expect("an input value");
+                let phys = PhysicalParams {
+                    m: next(),
+                    k: next(),
+                    c: next(),
+                    n: next(),
+                    p: next(),
+                    alpha: next(),
+                    beta: next(),
+                    gamma: next(),
+                    a: next(),
+                };
+                Inputs::Physical { phys, v0: next() }
+            }
+        };
+        out
+    }
+
+    /// The nondimensional parameters (validated against 𝓟 for every value of the ranges).
+    pub fn nd(&self, kind: ModelKind) -> Result<NdParams<R>, ParamError> {
+        match self {
+            Inputs::Nd(p) => NdParams::new(
+                kind,
+                p.b.clone(),
+                p.gamma.clone(),
+                p.kappa.clone(),
+                p.sigma.clone(),
+                p.n.clone(),
+                p.p.clone(),
+            ),
+            Inputs::Base { base, v0 } => nd_from_base(kind, base, v0),
+            Inputs::Physical { phys, v0 } => {
+                phys.validate(kind)?;
+                phys.nondimensionalize(kind, v0)
+            }
+        }
+    }
+}
+
+/// True when an input is a range (wider than the enclosure of a decimal).
+pub fn is_range(x: &Interval) -> bool {
+    x.wid() > 4.0 * f64::EPSILON * x.mag()
+}
+
+/// Proved T_s and e for every input value in the ranges.
+#[derive(Clone, Debug)]
+pub struct SetEnclosure {
+    pub ts: Interval,
+    pub e: Interval,
+    /// With one input given as a range: its index in [`Inputs::values`], and enclosures of
+    /// dT_s/du and de/du over the whole range.
+    pub slope: Option<Slope>,
+    /// Pieces of the proved flow (Taylor and low-order steps).
+    pub steps: usize,
+}
+
+/// The derivatives of T_s and e in one input, over a range of it.
+#[derive(Clone, Copy, Debug)]
+pub struct Slope {
+    pub input: usize,
+    pub ts: Interval,
+    pub e: Interval,
+}
+
+fn param_error(e: ParamError) -> RigorError {
+    RigorError {
+        reason: e.0,
+        t: 0.0,
+        width: 0.0,
+    }
+}
+
+/// Encloses T_s and e of model `kind` for every value of `inputs` (ranges allowed in any of
+/// them). No range: the point engine. One range: the variational system (hull ∩ mean-value
+/// form, and the slopes). More: the parameters as components (the hull).
+pub fn prove_over_set(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError> {
+    let nd = inputs.nd(kind).map_err(param_error)?;
+    let vals = inputs.values();
+    let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
+    match ranges.len() {
+        0 => point(kind, nd, opts),
+        1 => {
+            let j = ranges[0];
+            let r = match kind {
+                ModelKind::Shc => variational::<_, 3, 7>(Shc::new, kind, inputs, j, opts),
+                ModelKind::Maxwell => variational::<_, 4, 9>(Maxwell::new, kind, inputs, j, opts),
+            }?;
+            // the mean-value form around the centre û
+            let u = vals[j];
+            let mut cv = vals.clone();
+            cv[j] = Interval::try_from((u.mid(), u.mid())).unwrap();
+            let centre = inputs.with_values(cv).nd(kind).map_err(param_error)?;
+            let c = point(kind, centre, opts)?;
+            let slope = r.slope.expect("one range");
+            let du = u - Interval::try_from((u.mid(), u.mid())).unwrap();
+            let ts = r.ts.intersection(c.ts + slope.ts * du);
+            let e = r.e.intersection(c.e + slope.e * du);
+            if ts.is_empty() || e.is_empty() {
+                return Err(RigorError {
+                    reason: "the hull and the mean-value form do not meet (an internal error)"
+                        .into(),
+                    t: 0.0,
+                    width: 0.0,
+                });
+            }
+            Ok(SetEnclosure { ts, e, ..r })
+        }
+        k if k <= MAX_UNCERTAIN => match kind {
+            ModelKind::Shc => hull::<_, 3, 13>(Shc::new, kind, inputs, &ranges, opts),
+            ModelKind::Maxwell => hull::<_, 4, 14>(Maxwell::new, kind, inputs, &ranges, opts),
+        },
+        k => Err(RigorError {
+            reason: format!("{k} inputs are ranges; at most {MAX_UNCERTAIN} can be"),
+            t: 0.0,
+            width: 0.0,
+        }),
+    }
+}
+
+fn point(
+    kind: ModelKind,
+    nd: NdParams<Interval>,
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError> {
+    use super::rigorous::rigorous_impact;
+    let r = match kind {
+        ModelKind::Shc => rigorous_impact(&Shc::new(nd), opts).map(|r| (r.ts, r.e, r.flow.len())),
+        ModelKind::Maxwell => {
+            rigorous_impact(&Maxwell::new(nd), opts).map(|r| (r.ts, r.e, r.flow.len()))
+        }
+    }?;
+    Ok(SetEnclosure {
+        ts: r.0,
+        e: r.1,
+        slope: None,
+        steps: r.2,
+    })
+}
+
+type V1 = Dual<Rec<Interval>, 1>;
+
+/// The system (x, u, S) of the module doc, D = 2N + 1 components; outputs F, V, ∂F/∂u, ∂V/∂u.
+fn variational<M, const N: usize, const D: usize>(
+    build: impl Fn(NdParams<V1>) -> M,
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    j: usize,
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError>
+where
+    M: CollisionModel<V1, N>,
+{
+    assert_eq!(D, 2 * N + 1);
+    let vals = inputs.values();
+    let mut params: [Option<Interval>; D] = [None; D];
+    params[N] = Some(vals[j]);
+    let mut x0 = [Interval::try_from((0.0, 0.0)).unwrap(); D];
+    let tape = Tape::<Interval, D>::record_with(params, |v| {
+        let c = |x: Interval| V1::constant(Rec::constant(x));
+        let u = Dual {
+            v: v[N].clone(),
+            d: [Rec::constant(Interval::one())],
+        };
+        let dv: Vec<V1> = (0..vals.len())
+            .map(|i| if i == j { u.clone() } else { c(vals[i]) })
+            .collect();
+        let nd = inputs
+            .with_values(dv)
+            .nd(kind)
+            .expect("validated as intervals");
+        let m = build(nd);
+        let xs: [V1; N] = std::array::from_fn(|i| Dual {
+            v: v[i].clone(),
+            d: [v[N + 1 + i].clone()],
+        });
+        let f = m.field(&xs);
+        let (force, vel) = (m.force(&xs), m.velocity(&xs));
+        let mut o: Vec<Rec<Interval>> = f.iter().map(|c| c.v.clone()).collect();
+        o.push(Rec::constant(Interval::zero()));
+        o.extend(f.iter().map(|c| c.d[0].clone()));
+        o.extend([force.v, vel.v, force.d[0].clone(), vel.d[0].clone()]);
+        o
+    });
+    // x(0) from the model (it does not depend on the parameters), u(0) = U, S(0) = 0
+    let m0 = build(
+        inputs
+            .with_values(vals.iter().map(|&x| V1::constant(Rec::constant(x))).collect())
+            .nd(kind)
+            .map_err(param_error)?,
+    );
+    for (i, s) in m0.initial_state().iter().enumerate() {
+        x0[i] = *s.v.value();
+    }
+    x0[N] = vals[j];
+    let (flow, ev) = integrate_system(&tape, x0, opts)?;
+    // the derivatives over the event's state enclosure
+    let mut ws = Workspace::default();
+    let o = tape.eval(&ev.state);
+    let (df_du, dv_du) = (o[D + 2], o[D + 3]);
+    let slope = tape.jet(&ev.state, 1, &mut ws).ok().and_then(|_| {
+        let df_dt = tape.output_coef(&ws, 1, D, 1);
+        let dv_dt = tape.output_coef(&ws, 1, D + 1, 1);
+        let (f, v) = (o[D], o[D + 1]);
+        if v.inf() > 0.0 && df_dt.sup() < 0.0 {
+            // F = 0 crossed downwards with V > 0
+            let dts = -df_du / df_dt;
+            Some(Slope {
+                input: j,
+                ts: dts,
+                e: dv_du + dv_dt * dts,
+            })
+        } else if f.sup() < 0.0 && dv_dt.inf() > 0.0 {
+            // V = 0 crossed upwards with F < 0: e = 0
+            Some(Slope {
+                input: j,
+                ts: -dv_du / dv_dt,
+                e: Interval::zero(),
+            })
+        } else {
+            None
+        }
+    });
+    let slope = slope.ok_or_else(|| RigorError {
+        reason: "the crossing at T_s is not transversal over the whole range (no derivative)"
+            .into(),
+        t: ev.ts.sup(),
+        width: ev.ts.wid(),
+    })?;
+    Ok(SetEnclosure {
+        ts: ev.ts,
+        e: ev.e,
+        slope: Some(slope),
+        steps: flow.len(),
+    })
+}
+
+/// The system (x, u_1, …, u_K) padded to [`MAX_UNCERTAIN`] parameter components: D = N + 10.
+fn hull<M, const N: usize, const D: usize>(
+    build: impl Fn(NdParams<Rec<Interval>>) -> M,
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    ranges: &[usize],
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError>
+where
+    M: CollisionModel<Rec<Interval>, N>,
+{
+    assert_eq!(D, N + MAX_UNCERTAIN);
+    let vals = inputs.values();
+    let zero = Interval::try_from((0.0, 0.0)).unwrap();
+    let mut params: [Option<Interval>; D] = [None; D];
+    let mut x0 = [zero; D];
+    for slot in 0..MAX_UNCERTAIN {
+        let v = ranges.get(slot).map_or(zero, |&i| vals[i]);
+        params[N + slot] = Some(v);
+        x0[N + slot] = v;
+    }
+    let tape = Tape::<Interval, D>::record_with(params, |v| {
+        let rv: Vec<Rec<Interval>> = (0..vals.len())
+            .map(|i| match ranges.iter().position(|&r| r == i) {
+                Some(slot) => v[N + slot].clone(),
+                None => Rec::constant(vals[i]),
+            })
+            .collect();
+        let nd = inputs.with_values(rv).nd(kind).expect("validated as intervals");
+        let m = build(nd);
+        let xs: [Rec<Interval>; N] = std::array::from_fn(|i| v[i].clone());
+        let mut o = m.field(&xs).to_vec();
+        o.extend((0..MAX_UNCERTAIN).map(|_| Rec::constant(zero)));
+        o.extend([m.force(&xs), m.velocity(&xs)]);
+        o
+    });
+    let m0 = build(
+        inputs
+            .with_values(vals.iter().map(|&x| Rec::constant(x)).collect())
+            .nd(kind)
+            .map_err(param_error)?,
+    );
+    for (i, s) in m0.initial_state().iter().enumerate() {
+        x0[i] = *s.value();
+    }
+    let (flow, ev) = integrate_system(&tape, x0, opts)?;
+    Ok(SetEnclosure {
+        ts: ev.ts,
+        e: ev.e,
+        slope: None,
+        steps: flow.len(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn iv(s: &str) -> Interval {
+        Interval::parse_decimal(s).unwrap()
+    }
+
+    fn base(kind: ModelKind, text: &str, v0: &str) -> Inputs<Interval> {
+        Inputs::Base {
+            base: NdParams::parse(kind, text).unwrap(),
+            v0: iv(v0),
+        }
+    }
+
+    /// Width against the spread of 20 sampled point enclosures: `cargo test --release --lib
+    /// sets::tests::explore -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn explore() {
+        let opts = TaylorOptions::default();
+        let cases = [
+            (ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27", "0.999..1.001"),
+            (ModelKind::Maxwell, "0.655,-0.64,0.519,0.0118,1.94,2.28", "0.999..1.001"),
+        ];
+        for (kind, b, v) in cases {
+            let inp = base(kind, b, v);
+            let t0 = std::time::Instant::now();
+            let r = prove_over_set(kind, &inp, &opts);
+            let dt = t0.elapsed();
+            let u = iv(v);
+            let (mut elo, mut ehi, mut tlo, mut thi) = (1e9, -1e9, 1e9, -1e9);
+            for i in 0..20 {
+                let x = u.inf() + (u.sup() - u.inf()) * i as f64 / 19.0;
+                let p = base(kind, b, &format!("{x}"));
+                let c = prove_over_set(kind, &p, &opts).unwrap();
+                elo = f64::min(elo, c.e.mid());
+                ehi = f64::max(ehi, c.e.mid());
+                tlo = f64::min(tlo, c.ts.mid());
+                thi = f64::max(thi, c.ts.mid());
+            }
+            match r {
+                Ok(r) => eprintln!(
+                    "{kind:?} {v}: e {:?} ratio {:.3}, ts ratio {:.3}, slope {:?}, steps {} in {dt:?}",
+                    r.e,
+                    r.e.wid() / (ehi - elo),
+                    r.ts.wid() / (thi - tlo),
+                    r.slope,
+                    r.steps
+                ),
+                Err(e) => eprintln!("{kind:?} {v}: {e} in {dt:?}"),
+            }
+        }
+    }
+}
