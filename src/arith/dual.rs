@@ -45,12 +45,12 @@ impl<R: Real, const M: usize> Dual<R, M> {
         std::array::from_fn(|i| Self::variable(x[i].clone(), i))
     }
     /// u = w^q (any of the powers) differentiated in the base only, plus the exponent's part
-    /// u·ln(w)·q′ when q has a derivative (`ln` computes ln w, or ln|w|).
-    fn with_exponent_part(mut self, q: &Self, ln: impl FnOnce() -> R) -> Self {
+    /// u·ln|w|·q′ when q has a derivative (`ul` computes u·ln|w|, [`Real::pow_ln`]).
+    fn with_exponent_part(mut self, q: &Self, ul: impl FnOnce() -> R) -> Self {
         if q.d.iter().all(|c| c.lo() == 0.0 && c.hi() == 0.0) {
             return self;
         }
-        let ul = self.v.clone() * ln();
+        let ul = ul();
         for (d, dq) in self.d.iter_mut().zip(&q.d) {
             *d = d.clone() + ul.clone() * dq.clone();
         }
@@ -255,19 +255,26 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     fn sgn(&self) -> Self {
         Self::constant(self.v.sgn())
     }
+    /// The value only (the derivative of ∂(w^q)/∂q is not needed: unbounded).
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        Self {
+            v: R::pow_ln(&w.v, &q.v, signed),
+            d: std::array::from_fn(|_| R::unbounded()),
+        }
+    }
     fn pow(&self, y: &Self) -> Self {
         // d/dx x^y = y x^(y−1)
         let dq = y.v.clone() * self.v.pow(&(y.v.clone() - R::one()));
         let u = self.chain(self.v.pow(&y.v), dq);
-        u.with_exponent_part(y, || self.v.ln())
+        u.with_exponent_part(y, || R::pow_ln(&self.v, &y.v, false))
     }
     fn spow(&self, q: &Self) -> Self {
         let u = <Self as Scalar<R>>::spow(self, &q.v);
-        u.with_exponent_part(q, || Real::abs(&self.v).ln())
+        u.with_exponent_part(q, || R::pow_ln(&self.v, &q.v, true))
     }
     fn apow(&self, q: &Self) -> Self {
         let u = <Self as Scalar<R>>::apow(self, &q.v);
-        u.with_exponent_part(q, || Real::abs(&self.v).ln())
+        u.with_exponent_part(q, || R::pow_ln(&self.v, &q.v, false))
     }
     fn lo(&self) -> f64 {
         self.v.lo()

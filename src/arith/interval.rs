@@ -165,6 +165,44 @@ impl Real for Interval {
     fn ln(&self) -> Self {
         super::elementary::ln(*self)
     }
+    /// Away from 0 the product; where |w| reaches 0, g(y) = y^q ln y over y ∈ [0, |w|]:
+    /// g ≥ −1/(e q) (its minimum, at y = e^(−1/q)), g ≤ 0 for y ≤ 1 and g ≤ |w|^q ln|w| above.
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        if w.is_empty() || q.is_empty() {
+            return Interval::EMPTY;
+        }
+        if w.inf() > 0.0 || w.sup() < 0.0 {
+            let u = if signed { w.spow(q) } else { w.apow(q) };
+            return u * Real::ln(&Interval::abs(*w));
+        }
+        if q.inf() < 1.0 || !w.inf().is_finite() || !w.sup().is_finite() {
+            return Interval::ENTIRE;
+        }
+        let m = Interval::abs(*w).sup();
+        let ql = Interval::try_from((q.inf(), q.inf())).unwrap();
+        // g decreases on [0, e^(−1/q)] ⊇ [0, 0.3678] (q ≥ 1): below it the minimum is g(m),
+        // most negative for the smallest q (m^q decreases in q); else −1/(e q), 1/e < 0.36788
+        let lo = if m <= 0.3678 {
+            let mi = Interval::try_from((m, m)).unwrap();
+            (power(mi, ql) * Real::ln(&mi)).inf().min(0.0)
+        } else {
+            (const_interval!(-0.36788, -0.36788) / ql).inf()
+        };
+        let hi = if m > 1.0 {
+            let mi = Interval::try_from((m, m)).unwrap();
+            (power(mi, Interval::try_from((q.sup(), q.sup())).unwrap()) * Real::ln(&mi)).sup()
+        } else {
+            0.0
+        };
+        let g = Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE);
+        if signed {
+            // sign(w)·g(|w|) with both signs of w
+            let a = g.mag();
+            Interval::try_from((-a, a)).unwrap_or(Interval::ENTIRE)
+        } else {
+            g
+        }
+    }
     fn sgn(&self) -> Self {
         if self.is_empty() {
             Interval::EMPTY
@@ -212,12 +250,27 @@ impl Real for Interval {
     fn apow(&self, q: &Self) -> Self {
         if let Some(k) = q.as_integer() {
             match k {
+                // |x|^0 = 1 (the factor |z|^(n−1) of n = 1)
+                0 if !self.is_empty() => return const_interval!(1.0, 1.0),
                 1 => return Interval::abs(*self),
                 2 => return self.sqr(),
                 _ => {}
             }
         }
-        power(Interval::abs(*self).intersection(NONNEG), *q)
+        let a = Interval::abs(*self).intersection(NONNEG);
+        if q.inf() <= 0.0 && a.inf() == 0.0 && !q.is_empty() && q.inf() >= 0.0 {
+            // 0^q with q reaching 0 (|z|^(n−1) for n ∈ [1, …]): every value lies in [0, 1] below
+            // |x| = 1, and below |x|^q above it
+            let top = if !a.sup().is_finite() {
+                f64::INFINITY
+            } else if a.sup() > 1.0 {
+                power(Interval::try_from((a.sup(), a.sup())).unwrap(), *q).sup()
+            } else {
+                1.0
+            };
+            return Interval::try_from((0.0, top.max(1.0))).unwrap_or(Interval::ENTIRE);
+        }
+        power(a, *q)
     }
     fn lo(&self) -> f64 {
         self.inf()

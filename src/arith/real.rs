@@ -71,6 +71,13 @@ pub trait Real:
     /// sign(x): 1 for x > 0, −1 for x < 0; at 0 the interval types give [−1, 1] (the Clarke
     /// derivative of |x|), `f64` NaN (no derivative).
     fn sgn(&self) -> Self;
+    /// ∂/∂q of the power: |w|^q·ln|w| (`signed`: |w|^(q−1)w·ln|w|), q ≥ 1; 0 at w = 0 (its
+    /// limit). The default multiplies the power by ln|w| (every real where w reaches 0);
+    /// intervals bound it there (|y^q ln y| ≤ 1/(e q) for y ≤ 1).
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        let u = if signed { w.spow(q) } else { w.apow(q) };
+        u * w.abs().ln()
+    }
     /// x^y for x > 0.
     fn pow(&self, y: &Self) -> Self;
     /// The signed power |x|^(q−1)·x, q ≥ 1 (the Hertzian law's nonlinearity).
@@ -202,6 +209,13 @@ impl Real for f64 {
     }
     fn ln(&self) -> Self {
         f64::ln(*self)
+    }
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        if *w == 0.0 {
+            return 0.0;
+        }
+        let u = if signed { w.spow(q) } else { w.apow(q) };
+        u * w.abs().ln()
     }
     fn sgn(&self) -> Self {
         if *self > 0.0 {

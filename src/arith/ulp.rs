@@ -310,6 +310,13 @@ impl Real for Ulp {
     fn ln(&self) -> Self {
         Self::of(Real::ln(&self.interval()))
     }
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        Self::of(<Interval as Real>::pow_ln(
+            &w.interval(),
+            &q.interval(),
+            signed,
+        ))
+    }
     fn sgn(&self) -> Self {
         Self::of(Real::sgn(&self.interval()))
     }

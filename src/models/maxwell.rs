@@ -24,10 +24,9 @@ pub struct Maxwell<R: Real> {
     params: NdParams<R>,
     /// The BWHCL in nondimensional form: A = 1, β = B, γ = Γ, α = κ, k = 1.
     law: BoucWenHertz<R>,
-    /// p − 1 = 0 (then the field is linear in Y and Z: |x|^0 = 1); p + 1, 1/σ, κpσ, κ_c pσ.
+    /// p − 1 = 0 (then the field is linear in Y and Z: |x|^0 = 1); p + 1, κpσ, κ_c pσ.
     linear: bool,
     p1: R,
-    inv_sigma: R,
     kps: R,
     kcps: R,
 }
@@ -47,7 +46,6 @@ impl<R: Real> Maxwell<R> {
         Self {
             linear: (params.p.clone() - R::one()).as_integer() == Some(0),
             p1: params.p.clone() + R::one(),
-            inv_sigma: R::one() / params.sigma.clone(),
             kps: params.kappa.clone() * ps.clone(),
             kcps: law.alpha_c.clone() * ps,
             law,
@@ -97,13 +95,13 @@ impl<R: Real> CollisionModel<R, 4> for Maxwell<R> {
     fn field<T: Scalar<R>>(&self, s: &[T; 4]) -> [T; 4] {
         let [_, y, z, w] = s;
         let ((ys, yb), (zs, zb)) = (self.powers(y), self.powers(z));
-        // Ṙ = −σ F_P, with F_P from the same powers
-        let dr = self
-            .law
-            .force_of(ys, zs)
-            .scale(&(-self.params.sigma.clone()));
+        // Ṙ = −σ F_P, with F_P from the same powers; −Ṙ/σ = F_P is taken as F_P itself (the
+        // same value; for an interval σ, or σ carried as a variable over a range, σ·(1/σ)
+        // would widen every evaluation by σ's relative width)
+        let fp = self.law.force_of(ys, zs);
+        let dr = fp.scale(&(-self.params.sigma.clone()));
         let dz = self.law.hysteretic_rate(z, w);
-        let mut dw = -dr.scale(&self.inv_sigma);
+        let mut dw = fp;
         match (yb, zb) {
             (Some(yb), Some(zb)) => {
                 dw = dw - (yb * w.clone()).scale(&self.kps) - (zb * dz.clone()).scale(&self.kcps);

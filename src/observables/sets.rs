@@ -97,9 +97,9 @@ impl<R: Real> Inputs<R> {
         match self {
             Inputs::Nd(_) => &["B", "Gamma", "kappa", "sigma", "n", "p"],
             Inputs::Base { .. } => &["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "v0"],
-            Inputs::Physical { .. } => &[
-                "m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A", "v0",
-            ],
+            Inputs::Physical { .. } => {
+                &["m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A", "v0"]
+            }
         }
     }
 
@@ -217,6 +217,17 @@ pub fn prove_over_set(
             let du = u - Interval::try_from((u.mid(), u.mid())).unwrap();
             let ts = r.ts.intersection(c.ts + slope.ts * du);
             let e = r.e.intersection(c.e + slope.e * du);
+            if std::env::var_os("BWCL_TRACE_SETS").is_some() {
+                eprintln!(
+                    "hull ts {:e} e {:e}; mean-value ts {:e} e {:e}; slopes {:?} {:?}",
+                    r.ts.wid(),
+                    r.e.wid(),
+                    (c.ts + slope.ts * du).wid(),
+                    (c.e + slope.e * du).wid(),
+                    slope.ts,
+                    slope.e
+                );
+            }
             if ts.is_empty() || e.is_empty() {
                 return Err(RigorError {
                     reason: "the hull and the mean-value form do not meet (an internal error)"
@@ -306,7 +317,11 @@ where
     // x(0) from the model (it does not depend on the parameters), u(0) = U, S(0) = 0
     let m0 = build(
         inputs
-            .with_values(vals.iter().map(|&x| V1::constant(Rec::constant(x))).collect())
+            .with_values(
+                vals.iter()
+                    .map(|&x| V1::constant(Rec::constant(x)))
+                    .collect(),
+            )
             .nd(kind)
             .map_err(param_error)?,
     );
@@ -314,7 +329,7 @@ where
         x0[i] = *s.v.value();
     }
     x0[N] = vals[j];
-    let (flow, ev) = integrate_system(&tape, x0, opts)?;
+    let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
     // the derivatives over the event's state enclosure
     let mut ws = Workspace::default();
     let o = tape.eval(&ev.state);
@@ -384,7 +399,10 @@ where
                 None => Rec::constant(vals[i]),
             })
             .collect();
-        let nd = inputs.with_values(rv).nd(kind).expect("validated as intervals");
+        let nd = inputs
+            .with_values(rv)
+            .nd(kind)
+            .expect("validated as intervals");
         let m = build(nd);
         let xs: [Rec<Interval>; N] = std::array::from_fn(|i| v[i].clone());
         let mut o = m.field(&xs).to_vec();
@@ -401,7 +419,7 @@ where
     for (i, s) in m0.initial_state().iter().enumerate() {
         x0[i] = *s.value();
     }
-    let (flow, ev) = integrate_system(&tape, x0, opts)?;
+    let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
     Ok(SetEnclosure {
         ts: ev.ts,
         e: ev.e,
@@ -425,6 +443,76 @@ mod tests {
         }
     }
 
+    /// (width of the enclosure, spread of 20 sampled point enclosures' midpoints) of T_s and e,
+    /// and the enclosure, for input `j` of `inp` over `range`.
+    fn measure(
+        kind: ModelKind,
+        inp: &Inputs<Interval>,
+        j: usize,
+        range: Interval,
+        samples: usize,
+    ) -> (
+        Result<SetEnclosure, RigorError>,
+        f64,
+        f64,
+        std::time::Duration,
+    ) {
+        let opts = TaylorOptions::default();
+        let mut vals = inp.values();
+        vals[j] = range;
+        let t0 = std::time::Instant::now();
+        let r = prove_over_set(kind, &inp.with_values(vals.clone()), &opts);
+        let dt = t0.elapsed();
+        let (mut elo, mut ehi, mut tlo, mut thi) = (1e9, -1e9, 1e9, -1e9);
+        for i in 0..samples {
+            let x = range.inf() + (range.sup() - range.inf()) * i as f64 / (samples - 1) as f64;
+            vals[j] = Interval::try_from((x, x)).unwrap();
+            let c = prove_over_set(kind, &inp.with_values(vals.clone()), &opts).unwrap();
+            elo = f64::min(elo, c.e.mid());
+            ehi = f64::max(ehi, c.e.mid());
+            tlo = f64::min(tlo, c.ts.mid());
+            thi = f64::max(thi, c.ts.mid());
+        }
+        (r, ehi - elo, thi - tlo, dt)
+    }
+
+    #[test]
+    #[ignore]
+    fn explore_params() {
+        for (name, kind, b) in crate::models::params::TABLE1 {
+            let inp = base(kind, b, "1");
+            for j in 0..6 {
+                let x = inp.values()[j];
+                let m = x.mid();
+                let rel: f64 = std::env::var("REL")
+                    .ok()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(0.0);
+                let h = if rel > 0.0 {
+                    rel * m.abs() / 2.0
+                } else {
+                    0.0005
+                };
+                let range = if m == 1.0 {
+                    Interval::try_from((1.0, 1.0 + 2.0 * h)).unwrap()
+                } else {
+                    Interval::try_from((m - h, m + h)).unwrap()
+                };
+                let (r, se, st, dt) = measure(kind, &inp, j, range, 20);
+                match r {
+                    Ok(r) => eprintln!(
+                        "{name} {}: e ratio {:.3}, ts ratio {:.3}, steps {} in {dt:?}",
+                        inp.names()[j],
+                        r.e.wid() / se,
+                        r.ts.wid() / st,
+                        r.steps
+                    ),
+                    Err(e) => eprintln!("{name} {}: {e} in {dt:?}", inp.names()[j]),
+                }
+            }
+        }
+    }
+
     /// Width against the spread of 20 sampled point enclosures: `cargo test --release --lib
     /// sets::tests::explore -- --ignored --nocapture`.
     #[test]
@@ -432,8 +520,16 @@ mod tests {
     fn explore() {
         let opts = TaylorOptions::default();
         let cases = [
-            (ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27", "0.999..1.001"),
-            (ModelKind::Maxwell, "0.655,-0.64,0.519,0.0118,1.94,2.28", "0.999..1.001"),
+            (
+                ModelKind::Shc,
+                "1.43,-1.42,0.632,0.00715,1.31,1.27",
+                "0.999..1.001",
+            ),
+            (
+                ModelKind::Maxwell,
+                "0.655,-0.64,0.519,0.0118,1.94,2.28",
+                "0.999..1.001",
+            ),
         ];
         for (kind, b, v) in cases {
             let inp = base(kind, b, v);
@@ -462,6 +558,93 @@ mod tests {
                 ),
                 Err(e) => eprintln!("{kind:?} {v}: {e} in {dt:?}"),
             }
+        }
+    }
+}
+#[cfg(test)]
+mod debug_tests {
+    use super::*;
+    #[test]
+    #[ignore]
+    fn debug_n1() {
+        let kind = ModelKind::Shc;
+        let inp = Inputs::Base {
+            base: NdParams::parse(kind, "0.63,-0.611,0.188,0.00594,1,2.02").unwrap(),
+            v0: Interval::one(),
+        };
+        let mut vals = inp.values();
+        vals[4] = Interval::try_from((1.0, 1.001)).unwrap();
+        let inputs = inp.with_values(vals.clone());
+        let j = 4;
+        const N: usize = 3;
+        const D: usize = 7;
+        let mut params: [Option<Interval>; D] = [None; D];
+        params[N] = Some(vals[j]);
+        let tape = Tape::<Interval, D>::record_with(params, |v| {
+            let c = |x: Interval| V1::constant(Rec::constant(x));
+            let u = Dual {
+                v: v[N].clone(),
+                d: [Rec::constant(Interval::one())],
+            };
+            let dv: Vec<V1> = (0..vals.len())
+                .map(|i| if i == j { u.clone() } else { c(vals[i]) })
+                .collect();
+            let nd = inputs.with_values(dv).nd(kind).unwrap();
+            let m = Shc::new(nd);
+            let xs: [V1; N] = std::array::from_fn(|i| Dual {
+                v: v[i].clone(),
+                d: [v[N + 1 + i].clone()],
+            });
+            let f = m.field(&xs);
+            let (force, vel) = (m.force(&xs), m.velocity(&xs));
+            let mut o: Vec<Rec<Interval>> = f.iter().map(|c| c.v.clone()).collect();
+            o.push(Rec::constant(Interval::zero()));
+            o.extend(f.iter().map(|c| c.d[0].clone()));
+            o.extend([force.v, vel.v, force.d[0].clone(), vel.d[0].clone()]);
+            o
+        });
+        let z = Interval::zero();
+        let x0 = [z, z, -Interval::one(), vals[j], z, z, z];
+        eprintln!("{:?}", tape.eval(&x0));
+        let s = Interval::try_from((-1e-9, 1e-9)).unwrap();
+        let x1 = [s, s, -Interval::one() + s, vals[j], s, s, s];
+        eprintln!("{:?}", tape.eval(&x1));
+        let h = 1e-8;
+        let sp = Interval::try_from((-2e-8, 2e-8)).unwrap();
+        let y = [sp, sp, -Interval::one() + sp, vals[j], sp, sp, sp];
+        let f = tape.eval(&y);
+        for (i, c) in f.iter().enumerate() {
+            eprintln!("f{i} {c:?}");
+        }
+        let s = Interval::try_from((0.0, h)).unwrap();
+        let f0 = tape.eval(&x0);
+        let mut y: [Interval; D] = std::array::from_fn(|i| {
+            let c = x0[i] + s * f0[i];
+            let r = c.rad() + 1e-300 + c.mag() * 1e-15;
+            c + Interval::try_from((-r, r)).unwrap()
+        });
+        for it in 0..6 {
+            let fy = tape.eval(&y);
+            if it == 0 {
+                for (k, (op, v)) in tape.eval_nodes(&y).iter().enumerate() {
+                    eprintln!("node {k} {op:?} {v:?}");
+                }
+            }
+            let ynew: [Interval; D] = std::array::from_fn(|i| x0[i] + s * fy[i]);
+            for i in 0..D {
+                if !ynew[i].interior(y[i]) {
+                    eprintln!("it {it} comp {i}: {:?} not in {:?}", ynew[i], y[i]);
+                }
+            }
+            y = std::array::from_fn(|i| {
+                let c = ynew[i];
+                let r = c.rad() * 0.25 + 1e-300 + c.mag() * 1e-15;
+                c + Interval::try_from((-r, r)).unwrap()
+            });
+        }
+        for h in [1e-6, 1e-8, 1e-10] {
+            let o = crate::engines::taylor::step::low_order_step(&tape, 0.0, &x0, h);
+            eprintln!("h {h}: {:?}", o.map(|o| o.x1));
         }
     }
 }

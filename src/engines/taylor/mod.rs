@@ -139,30 +139,35 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
         o.push(model.velocity(v));
         o
     });
-    integrate_tape(&tape, model.initial_state(), opts)
+    integrate_tape(&tape, model.initial_state(), N, opts)
 }
 
 /// [`integrate_to_separation`] of a recorded system: the field's N components, then the
 /// outputs F (N) and V (N + 1) of the separation condition, then any others; from `x0`. A
 /// model with parameters given as ranges is such a system (the parameters as components with
-/// ṗ = 0: [`crate::observables::sets`]).
+/// ṗ = 0: [`crate::observables::sets`]). The first `n_state` components are the model's state:
+/// the enclosure's width that steers the tolerances and stops a widening enclosure is theirs
+/// (a parameter's range, or a derivative's scale, is not the state's uncertainty).
 pub fn integrate_system<const N: usize>(
     tape: &Tape<Interval, N>,
     x0: [Interval; N],
+    n_state: usize,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
     if rayon::current_thread_index().is_some() {
-        integrate_tape(tape, x0, opts)
+        integrate_tape(tape, x0, n_state, opts)
     } else {
-        rayon::scope(|_| integrate_tape(tape, x0, opts))
+        rayon::scope(|_| integrate_tape(tape, x0, n_state, opts))
     }
 }
 
 fn integrate_tape<const N: usize>(
     tape: &Tape<Interval, N>,
     x0: [Interval; N],
+    n_state: usize,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
+    let width = |x: &[Interval; N]| x[..n_state].iter().map(|c| c.wid()).fold(0.0, f64::max);
     if opts.order < 2
         || opts.tol.is_nan()
         || opts.tol <= 0.0
@@ -192,7 +197,7 @@ fn integrate_tape<const N: usize>(
     // start of a stretch where the separation condition was neither excluded nor proved
     let mut pending: Option<f64> = None;
     for _ in 0..opts.max_steps {
-        let w = step::width(&x);
+        let w = width(&x);
         if !step::bounded(&x) || w > opts.max_width {
             return Err(RigorError {
                 reason: "the enclosure grew too wide".into(),
@@ -283,7 +288,7 @@ fn integrate_tape<const N: usize>(
                         });
                     }
                     if let Some(o) = step::low_order_step(tape, t, &x, h)
-                        && step::width(&o.x1) - w
+                        && width(&o.x1) - w
                             <= opts.cross_tol.max(1e-3 * w)
                                 + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
                     {
@@ -333,7 +338,7 @@ fn integrate_tape<const N: usize>(
             eprintln!(
                 "{kind} t={t:.6e} h={:.3e} w={:.3e} x={:?}",
                 t1 - t,
-                step::width(&out.x1),
+                width(&out.x1),
                 out.x1.map(|c| c.mid())
             );
         }
@@ -344,6 +349,6 @@ fn integrate_tape<const N: usize>(
     Err(RigorError {
         reason: format!("more than {} steps", opts.max_steps),
         t,
-        width: step::width(&x),
+        width: width(&x),
     })
 }

@@ -327,14 +327,24 @@ impl<R: Real> Real for Rec<R> {
     fn sgn(&self) -> Self {
         self.unary(Op::Sign, Real::sgn)
     }
+    /// |w|^q ln|w| of a state component: [`Op::PowLn`] of the power's node and ln|w|'s (so the
+    /// interval evaluation bounds it at w = 0); of parameters, the product itself.
+    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
+        let u = if signed {
+            Real::spow(w, q)
+        } else {
+            Real::apow(w, q)
+        };
+        let Some(t) = w.tape.clone().filter(|t| !Self::tconst(t, w.idx)) else {
+            return u * Real::ln(&Real::abs(w));
+        };
+        let l = Self::push(&t, Op::LnAbs(w.idx), false, R::unbounded());
+        let val = R::unbounded();
+        let p = u.node_on(&t);
+        Self::push(&t, Op::PowLn(p, l.idx), false, val)
+    }
     fn pow(&self, y: &Self) -> Self {
-        Self::binary(
-            self,
-            y,
-            |a, b| a.pow(b),
-            Op::Pow,
-            |_, _, _, _| None,
-        )
+        Self::binary(self, y, |a, b| a.pow(b), Op::Pow, |_, _, _, _| None)
     }
     fn spow(&self, q: &Self) -> Self {
         power(self, q, |a, b| a.spow(b), Op::Spow, Op::SpowV)

@@ -43,15 +43,39 @@ pub fn step_span(t0: f64, h: f64) -> (f64, Interval) {
     (t1, span(super::flow::tau(point(t1), t0).sup()))
 }
 
-fn subset<const N: usize>(a: &[Interval; N], b: &[Interval; N]) -> bool {
-    a.iter().zip(b).all(|(x, y)| x.interior(*y))
+/// a ⊆ int b, except for the parameter components (ṗ = 0 exactly: a ⊆ b).
+fn subset<const N: usize>(a: &[Interval; N], b: &[Interval; N], params: &[usize]) -> bool {
+    (0..N).all(|i| {
+        if params.contains(&i) {
+            a[i].subset(b[i])
+        } else {
+            a[i].interior(b[i])
+        }
+    })
+}
+
+/// A guess of an a-priori box with the parameter components kept at their values in x (a
+/// parameter is constant: inflating it would leave its admissible range, e.g. n < 1).
+fn keep_params<const N: usize>(
+    mut y: [Interval; N],
+    x: &[Interval; N],
+    params: &[usize],
+) -> [Interval; N] {
+    for &i in params {
+        y[i] = x[i];
+    }
+    y
 }
 
 /// Inflates a box: mid ± (factor·rad + abs).
 fn inflate<const N: usize>(y: &[Interval; N], factor: f64, abs: f64) -> [Interval; N] {
     std::array::from_fn(|i| {
         let r = y[i].rad() * factor + abs + y[i].mag() * 1e-15;
-        y[i] + Interval::try_from((-r, r)).unwrap()
+        // an empty or unbounded component (r NaN or ∞) stays unbounded: the test then fails
+        match Interval::try_from((-r, r)) {
+            Ok(b) => y[i] + b,
+            Err(_) => Interval::ENTIRE,
+        }
     })
 }
 
@@ -193,7 +217,7 @@ fn validate<const N: usize>(
     while h >= h_min {
         let (t1, s) = step_span(t0, h);
         let p0 = taylor_eval(&cbox, &top, s);
-        let mut y = inflate(&p0, 0.5, 1e-300);
+        let mut y = keep_params(inflate(&p0, 0.5, 1e-300), x, tape.params());
         // the next trial step as a fraction of h: halved unless the remainder says more
         let mut shrink = 0.5;
         for _ in 0..4 {
@@ -202,7 +226,7 @@ fn validate<const N: usize>(
             };
             let rem: [Interval; N] = std::array::from_fn(|i| jy[i][k]);
             let ynew = taylor_eval(&cbox, &rem, s);
-            if subset(&ynew, &y) {
+            if subset(&ynew, &y, tape.params()) {
                 // the remainder's width is what the step adds: keep it at the tolerance
                 let hk = s.sup().powi(k as i32);
                 let tol_rem = tol.max(f64::EPSILON * 1e-3);
@@ -225,7 +249,7 @@ fn validate<const N: usize>(
                     apriori: ynew,
                 });
             }
-            y = inflate(&hull(&y, &ynew), 0.5, 1e-300);
+            y = keep_params(inflate(&hull(&y, &ynew), 0.5, 1e-300), x, tape.params());
         }
         h *= shrink;
     }
@@ -479,11 +503,16 @@ pub fn low_order_step<const N: usize>(
         std::array::from_fn(|i| v[i])
     };
     let f0 = field(x);
-    let mut y = inflate(&std::array::from_fn(|i| x[i] + s * f0[i]), 1.0, 1e-300);
+    let params = tape.params();
+    let mut y = keep_params(
+        inflate(&std::array::from_fn(|i| x[i] + s * f0[i]), 1.0, 1e-300),
+        x,
+        params,
+    );
     for _ in 0..6 {
         let fy = field(&y);
         let ynew: [Interval; N] = std::array::from_fn(|i| x[i] + s * fy[i]);
-        if ynew.iter().all(|c| c.is_common_interval()) && subset(&ynew, &y) {
+        if ynew.iter().all(|c| c.is_common_interval()) && subset(&ynew, &y, params) {
             let fy2 = field(&ynew);
             // f over the tighter box encloses f(Φ) too (Φ stays in ynew)
             let slope: [Interval; N] = std::array::from_fn(|i| fy[i].intersection(fy2[i]));
@@ -503,7 +532,7 @@ pub fn low_order_step<const N: usize>(
         }
         // the next guess: the Picard image, slightly inflated (not the hull with the old guess,
         // which lets components that feed each other chase one another)
-        y = inflate(&ynew, 0.25, 1e-300);
+        y = keep_params(inflate(&ynew, 0.25, 1e-300), x, params);
     }
     None
 }
@@ -533,7 +562,9 @@ mod tests {
     /// continued across the kink v = 0 from the side of v0.
     fn kink_toy(c: Interval, v0: f64, h: f64) -> Option<StepOut<2>> {
         let zero = Interval::try_from((0.0, 0.0)).unwrap();
-        let tape = Tape::<Interval, 2>::record(|s| vec![Scalar::<Interval>::abs(&s[1]), s[0].scale(&zero).shift(&c)]);
+        let tape = Tape::<Interval, 2>::record(|s| {
+            vec![Scalar::<Interval>::abs(&s[1]), s[0].scale(&zero).shift(&c)]
+        });
         assert_eq!(tape.kinks(), &[1]);
         let tapes = Tapes::of(&tape);
         let mut ws = Workspaces::default();

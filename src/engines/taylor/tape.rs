@@ -53,6 +53,11 @@ pub enum Op {
     Ln(usize),
     /// √x, constant in time.
     Sqrt(usize),
+    /// ln|w| (w ≠ 0 for its series; a branch point like a power).
+    LnAbs(usize),
+    /// (power node, ln|w| node): the power times ln|w|, ∂/∂q of a power |w|^q with a variable
+    /// exponent; its interval value is bounded where w reaches 0 ([`Real::pow_ln`]).
+    PowLn(usize, usize),
 }
 
 /// Why a jet does not exist.
@@ -82,6 +87,8 @@ pub struct Tape<R, const N: usize> {
     /// Per node: constant in time (only constants and parameter variables below it; see
     /// [`Tape::record_with`]). Expanded as constants: the value at order 0, zeros above.
     tconst: Vec<bool>,
+    /// The parameter components (constant in time, [`Tape::record_with`]).
+    params: Vec<usize>,
 }
 
 /// A key identifying an operation up to its constants' values (for common subexpressions).
@@ -169,6 +176,8 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 Op::Pow(a, b) => (Op::Pow(m(a), m(b)), Key::Op(15, m(a), m(b), 0, 0)),
                 Op::Ln(a) => (Op::Ln(m(a)), Key::Op(16, m(a), 0, 0, 0)),
                 Op::Sqrt(a) => (Op::Sqrt(m(a)), Key::Op(17, m(a), 0, 0, 0)),
+                Op::LnAbs(a) => (Op::LnAbs(m(a)), Key::Op(18, m(a), 0, 0, 0)),
+                Op::PowLn(a, b) => (Op::PowLn(m(a), m(b)), Key::Op(19, m(a), m(b), 0, 0)),
                 Op::Twin(..) => unreachable!("not recorded"),
             };
             // |w|^(q−1)w = w^q (q odd) and |w|^q = w^q (q even) are entire: for q ≥ 3 they are
@@ -224,12 +233,10 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 Op::Spow(a, q) | Op::Twin(a, q, _, true) if !analytic_power(&consts[q], true) => {
                     Some((a, false))
                 }
-                Op::Apow(a, q) | Op::Twin(a, q, _, false)
-                    if !analytic_power(&consts[q], false) =>
-                {
+                Op::Apow(a, q) | Op::Twin(a, q, _, false) if !analytic_power(&consts[q], false) => {
                     Some((a, false))
                 }
-                Op::SpowV(a, _) | Op::ApowV(a, _) => Some((a, false)),
+                Op::SpowV(a, _) | Op::ApowV(a, _) | Op::LnAbs(a) => Some((a, false)),
                 _ => None,
             }
         };
@@ -280,6 +287,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             switching,
             kinks,
             log_lead,
+            params: (0..N).filter(|&v| tconst[v]).collect(),
             tconst,
         }
     }
@@ -294,7 +302,13 @@ impl<R: Real, const N: usize> Tape<R, N> {
             kinks: self.kinks.clone(),
             log_lead: self.log_lead.clone(),
             tconst: self.tconst.clone(),
+            params: self.params.clone(),
         }
+    }
+
+    /// The parameter components: constant in time (see [`Tape::record_with`]).
+    pub fn params(&self) -> &[usize] {
+        &self.params
     }
 
     /// The switching components that are kinks of |·| only (see [`Tape::jet_on`]).
@@ -331,6 +345,17 @@ impl<R: Real, const N: usize> Tape<R, N> {
         self.outputs.iter().map(|&o| v[o].clone()).collect()
     }
 
+    /// Every node's value at `x` with its operation (for debugging).
+    #[doc(hidden)]
+    pub fn eval_nodes(&self, x: &[R; N]) -> Vec<(Op, R)> {
+        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
+        for op in &self.ops {
+            let c = self.op_value(op, |a| &v[a], x, &[0; N]);
+            v.push(c);
+        }
+        self.ops.iter().copied().zip(v).collect()
+    }
+
     /// The value of one operation from its operands' values `v` (state `x`, kinks continued
     /// from `side`).
     #[inline]
@@ -365,6 +390,12 @@ impl<R: Real, const N: usize> Tape<R, N> {
             Op::Pow(a, b) => Real::pow(v(a), v(b)),
             Op::Ln(a) => Real::ln(v(a)),
             Op::Sqrt(a) => Real::sqrt(v(a)),
+            Op::LnAbs(a) => Real::ln(&Real::abs(v(a))),
+            Op::PowLn(p, _) => match self.ops[p] {
+                Op::SpowV(a, q) => R::pow_ln(v(a), v(q), true),
+                Op::ApowV(a, q) => R::pow_ln(v(a), v(q), false),
+                _ => unreachable!("PowLn of a power with a variable exponent"),
+            },
         }
     }
 
@@ -421,6 +452,19 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         } else {
                             R::zero()
                         }
+                    }
+                    Op::LnAbs(a) => {
+                        if k == 0 {
+                            self.sign_of(a, at(a, 0))?;
+                            Real::ln(&Real::abs(at(a, 0)))
+                        } else {
+                            // k·L_k by the log recurrence from j·L_j (j < k), then L_k
+                            let jl: Vec<R> = (0..k).map(|j| at(i, j).mul_int(j as i64)).collect();
+                            log_k(&c[a * k1..a * k1 + k + 1], &jl, k).div_int(k as i64)
+                        }
+                    }
+                    Op::PowLn(p, l) => {
+                        mul_k(&c[p * k1..p * k1 + k + 1], &c[l * k1..l * k1 + k + 1], k)
                     }
                     Op::SpowV(a, q) | Op::ApowV(a, q) => {
                         let signed = matches!(op, Op::SpowV(..));
@@ -539,6 +583,7 @@ fn operands(op: &Op) -> impl Iterator<Item = usize> {
         | Op::Div(a, b)
         | Op::SpowV(a, b)
         | Op::ApowV(a, b)
+        | Op::PowLn(a, b)
         | Op::Pow(a, b) => (Some(a), Some(b)),
         Op::Neg(a)
         | Op::Scale(a, _)
@@ -549,6 +594,7 @@ fn operands(op: &Op) -> impl Iterator<Item = usize> {
         | Op::Apow(a, _)
         | Op::Twin(a, ..)
         | Op::Ln(a)
+        | Op::LnAbs(a)
         | Op::Sqrt(a) => (Some(a), None),
     };
     a.into_iter().chain(b)
