@@ -485,3 +485,66 @@ fn oracle_matches_closed_forms() {
         assert!(agree(&out.e, &e, 34), "σ = {sigma}: {} vs {e}", out.e);
     }
 }
+
+/// Every range enclosure contains the references of the points in it (issue #13): each main
+/// case with one input widened to a range around its value (v0 ± 10⁻⁴·v0 for a base set, else
+/// κ ± 10⁻⁴, and n or p ± 10⁻⁴ where they are not whole numbers: the variable exponents), proved
+/// by the variational system; the 36-digit reference, compared exactly, lies inside.
+#[test]
+fn range_enclosures_contain_the_references() {
+    use bwcl::observables::sets::{Inputs, prove_over_set};
+    let refs: Vec<Reference> = references()
+        .into_iter()
+        .filter(|r| r.group == "main")
+        .collect();
+    let widen = |x: Interval, d: f64| {
+        let d = Interval::try_from((-d, d)).unwrap();
+        x + d
+    };
+    let mut fails = Vec::new();
+    let mut checked = 0;
+    for (k, r) in refs.iter().enumerate() {
+        let p = NdParams::<Interval>::parse(r.model, &r.params).unwrap();
+        let inputs = match &r.v0 {
+            Some(v0) => Inputs::Base {
+                base: p,
+                v0: <Interval as Real>::parse_decimal(v0).unwrap(),
+            },
+            None => Inputs::Nd(p),
+        };
+        let mut vals = inputs.values();
+        // which input becomes a range: v0, else κ, else (every third case) a non-integer n or p
+        let j = if r.v0.is_some() {
+            6
+        } else if k % 3 == 0 && vals[4].mid().fract() != 0.0 {
+            4
+        } else if k % 3 == 1 && vals[5].mid().fract() != 0.0 {
+            5
+        } else {
+            2
+        };
+        vals[j] = widen(vals[j], 1e-4 * vals[j].mag().min(1.0));
+        let tag = format!("{} {} v0={:?} input {j}", r.model.name(), r.params, r.v0);
+        match prove_over_set(
+            r.model,
+            &inputs.with_values(vals),
+            &TaylorOptions::default(),
+        ) {
+            Err(e) => fails.push(format!("{tag}: {e}")),
+            Ok(enc) => {
+                checked += 1;
+                for (name, x, iv) in [("T_s", &r.ts, enc.ts), ("e", &r.e, enc.e)] {
+                    let inside = iv.inf().is_finite()
+                        && iv.sup().is_finite()
+                        && Rational::from_f64(iv.inf()).unwrap() < *x
+                        && *x < Rational::from_f64(iv.sup()).unwrap();
+                    if !inside {
+                        fails.push(format!("{tag}: {name}: {:e} not in {iv:?}", x.to_f64()));
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{checked} range enclosures checked against their references");
+    assert!(fails.is_empty(), "{}", fails.join("\n"));
+}

@@ -41,6 +41,16 @@ fn time(s: &str) -> Result<f64, String> {
     }
 }
 
+/// --thickness: [1e-14, 1].
+fn thickness(s: &str) -> Result<f64, String> {
+    let t = decimal(s)?;
+    if (1e-14..=1.0).contains(&t) {
+        Ok(t)
+    } else {
+        Err("must be a number in [1e-14, 1]".into())
+    }
+}
+
 /// --rtol: [100 ε, 1).
 fn rtol(s: &str) -> Result<f64, String> {
     let r = decimal(s)?;
@@ -238,6 +248,8 @@ pub enum Command {
         after_long_help = fit_examples!()
     )]
     Cost(CostArgs),
+    /// Computer-assisted proofs over ranges of parameters (see `prove monotone --help`).
+    Prove(ProveArgs),
 }
 
 /// Output of `fit` and `cost`.
@@ -403,6 +415,53 @@ pub struct CorArgs {
     /// parsing or output), in total and per case.
     #[arg(long)]
     pub timing: bool,
+    /// With --rigorous, --base (or --physical) and one range of v0 (a..b): prove the CoR curve
+    /// over the whole range and write it to FILE piece by piece (CSV, or JSON for a name
+    /// ending in .json): v0_lo, v0_hi, v0_c, and on each piece e(v0) ∈ e_c + de·(v0 − v0_c),
+    /// T_s likewise, with the hulls e, ts and the thickness (all bounds rounded outward).
+    /// Created only when every piece is proved.
+    #[arg(long, value_name = "FILE", requires = "rigorous")]
+    pub band: Option<PathBuf>,
+    /// Largest thickness of --band (the vertical width of the enclosure of e at any v0),
+    /// 1e-14 ≤ T ≤ 1 [default: 1e-6].
+    #[arg(long, value_name = "T", requires = "band", allow_hyphen_values = true,
+          value_parser = thickness)]
+    pub thickness: Option<f64>,
+    /// With --rigorous: also prove ∂T_s/∂u and ∂e/∂u for every input u of the case (the
+    /// nondimensional, base or physical parameters and v0), at its value or over its range
+    /// (JSON: a field "sensitivities").
+    #[arg(long, requires = "rigorous")]
+    pub sensitivities: bool,
+}
+
+/// What `prove` proves.
+#[derive(Subcommand, Debug)]
+pub enum ProveCommand {
+    /// Prove e(v0) strictly decreasing over a range of impact speeds (de/dv0 < 0 proved on
+    /// every piece), or name the sub-ranges where it cannot.
+    Monotone(MonotoneArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ProveArgs {
+    #[command(subcommand)]
+    pub what: ProveCommand,
+}
+
+#[derive(Args, Debug)]
+pub struct MonotoneArgs {
+    /// The collision model: shc or maxwell.
+    #[arg(long, value_enum)]
+    pub model: ModelArg,
+    /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p) (decimals enclosed as written).
+    #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
+    pub base: String,
+    /// The range of impact speeds a..b [m/s], 0 < a < b.
+    #[arg(long, value_name = "a..b")]
+    pub v0: String,
+    /// Output format (table or json).
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 #[derive(Args, Debug)]

@@ -10,7 +10,8 @@ use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
-use bwcl::observables::rigorous::{rigorous_impact, rigorous_impact_over_speeds};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::sets;
 use bwcl::observables::trajectory::{Units, trajectory};
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -41,10 +42,16 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
         Command::Loop(a) => curve(&a, Curve::Loop),
         Command::Fit(a) => super::fit::fit(&a),
         Command::Cost(a) => super::fit::cost(&a),
+        Command::Prove(p) => match p.what {
+            super::args::ProveCommand::Monotone(m) => super::band::monotone(&m),
+        },
     }
 }
 
 fn cor(a: &CorArgs) -> Result<i32, CliError> {
+    if let Some(path) = &a.band {
+        return super::band::band(a, path);
+    }
     input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.params.model);
     let (bytes, failed, total, elapsed) = if a.engine.rigorous {
@@ -181,14 +188,14 @@ fn rigorous_row(
     opts: &TaylorOptions,
     pieces: usize,
 ) -> RigorousRow {
-    // a range of v0 (wider than the enclosure of a decimal) is proved by sub-ranges
-    let range = c.v0.filter(|v| v.wid() > 4.0 * f64::EPSILON * v.mag());
-    let res = match (range, &c.base) {
-        (Some(v), Some(base)) => {
-            rigorous_impact_over_speeds(kind, base, v, opts, pieces).map(|enc| (enc.ts, enc.e))
-        }
-        _ => with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
-            .map(|enc| (enc.ts, enc.e))),
+    // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
+    // set, with the solution's dependence on them carried by the engine
+    let ranged = c.inputs.values().iter().any(sets::is_range);
+    let res = if ranged {
+        sets::prove_over_set_split(kind, &c.inputs, opts, pieces).map(|(r, _)| (r.ts, r.e))
+    } else {
+        with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
+            .map(|enc| (enc.ts, enc.e)))
     };
     let mut row = RigorousRow {
         model: kind.name(),

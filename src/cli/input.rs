@@ -13,6 +13,7 @@ use bwcl::models::params::show;
 use bwcl::models::scaling::{PhysicalParams, Scales, nd_from_base, parse_speeds};
 use bwcl::models::{ModelKind, NdParams, ParamError};
 use bwcl::observables::FloatOptions;
+use bwcl::observables::sets::Inputs;
 use std::path::{Path, PathBuf};
 
 /// Most impact speeds in one --v0 list.
@@ -30,9 +31,11 @@ pub struct Case<R> {
     pub v0: Option<R>,
     pub params: NdParams<R>,
     pub scales: Option<Scales<R>>,
-    /// The base set P* (with --base, or of the --physical set): a range of v0 is proved by
-    /// sub-ranges through it.
+    /// The base set P* (with --base, or of the --physical set).
     pub base: Option<NdParams<R>>,
+    /// The inputs as given (any of them may be a range with --rigorous): what
+    /// [`bwcl::observables::sets`] proves over.
+    pub inputs: Inputs<R>,
 }
 
 /// The validated cases of the parameter options, in the order of --v0.
@@ -43,6 +46,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             NdParams::<R>::parse(kind, text).map_err(|e| nd_error::<R>("--nd", text, e))?;
         return Ok(vec![Case {
             v0: None,
+            inputs: Inputs::Nd(params.clone()),
             params,
             scales: None,
             base: None,
@@ -70,6 +74,10 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                     ))
                 })?;
                 Ok(Case {
+                    inputs: Inputs::Base {
+                        base: base.clone(),
+                        v0: v0.clone(),
+                    },
                     v0: Some(v0),
                     params,
                     scales: None,
@@ -100,6 +108,10 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                 })?;
                 let scales = phys.scales(&v0);
                 Ok(Case {
+                    inputs: Inputs::Physical {
+                        phys: phys.clone(),
+                        v0: v0.clone(),
+                    },
                     v0: Some(v0),
                     params,
                     scales: Some(scales),

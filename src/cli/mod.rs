@@ -2,6 +2,7 @@
 //! stderr line and an exit code (0 success, 1 not proved / integration failure, 2 bad input).
 
 mod args;
+mod band;
 mod commands;
 mod fit;
 mod input;

@@ -7,6 +7,7 @@
 //! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine;
 //! - [`decimal`]: their bounds as decimals rounded outward, exactly.
 
+pub mod band;
 pub mod decimal;
 pub mod rigorous;
 pub mod separation;

@@ -345,17 +345,6 @@ impl<R: Real, const N: usize> Tape<R, N> {
         self.outputs.iter().map(|&o| v[o].clone()).collect()
     }
 
-    /// Every node's value at `x` with its operation (for debugging).
-    #[doc(hidden)]
-    pub fn eval_nodes(&self, x: &[R; N]) -> Vec<(Op, R)> {
-        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
-        for op in &self.ops {
-            let c = self.op_value(op, |a| &v[a], x, &[0; N]);
-            v.push(c);
-        }
-        self.ops.iter().copied().zip(v).collect()
-    }
-
     /// The value of one operation from its operands' values `v` (state `x`, kinks continued
     /// from `side`).
     #[inline]

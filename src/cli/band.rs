@@ -1,0 +1,289 @@
+//! `cor --band` (a proved CoR curve over a range of v0) and `prove monotone`.
+
+use super::CliError;
+use super::args::{CorArgs, MonotoneArgs, ReportFormat};
+use super::input::{self, Case};
+use super::output::{self, outward};
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::{ModelKind, NdParams};
+use bwcl::observables::band::{BandOptions, BandPiece, prove_band, prove_decreasing};
+use bwcl::observables::decimal::Rounding;
+use inari::Interval;
+use rug::ops::Pow;
+use rug::{Integer, Rational};
+use std::path::Path;
+
+/// The exact decimal of a double (every double is a finite decimal).
+pub fn exact_decimal(x: f64) -> String {
+    let r = Rational::from_f64(x).expect("finite");
+    let (num, den) = r.into_numer_denom();
+    // den = 2^m: x = num·5^m / 10^m
+    let m = den.significant_bits() - 1;
+    let digits = (num.clone().abs() * Integer::from(5).pow(m as u32)).to_string();
+    let m = m as usize;
+    let (int, frac) = if digits.len() > m {
+        digits.split_at(digits.len() - m)
+    } else {
+        ("", digits.as_str())
+    };
+    let frac = format!("{:0>m$}", frac);
+    let frac = frac.trim_end_matches('0');
+    let int = if int.is_empty() { "0" } else { int };
+    let sign = if num < 0 { "-" } else { "" };
+    if frac.is_empty() {
+        format!("{sign}{int}")
+    } else {
+        format!("{sign}{int}.{frac}")
+    }
+}
+
+const HEAD: [&str; 16] = [
+    "v0_lo",
+    "v0_hi",
+    "v0_c",
+    "e_c_lo",
+    "e_c_hi",
+    "de_lo",
+    "de_hi",
+    "e_lo",
+    "e_hi",
+    "ts_c_lo",
+    "ts_c_hi",
+    "dts_lo",
+    "dts_hi",
+    "ts_lo",
+    "ts_hi",
+    "thickness",
+];
+
+/// One piece's fields, printed outward: the v0 range inward (the claim holds on it), the
+/// centre exactly, lower bounds down, upper bounds and the thickness up.
+fn fields(p: &BandPiece) -> Vec<String> {
+    let pair = |i: Interval| {
+        [
+            outward(i.inf(), Rounding::Down),
+            outward(i.sup(), Rounding::Up),
+        ]
+    };
+    let mut f = vec![
+        outward(p.v0_lo, Rounding::Up),
+        outward(p.v0_hi, Rounding::Down),
+        exact_decimal(p.v0_c),
+    ];
+    for i in [p.e_c, p.de, p.e, p.ts_c, p.dts, p.ts] {
+        f.extend(pair(i));
+    }
+    f.push(outward(p.thickness(), Rounding::Up));
+    f
+}
+
+fn json(pieces: &[BandPiece], meta: &str) -> Vec<u8> {
+    let mut s = format!("{{{meta},\"pieces\":[");
+    for (k, p) in pieces.iter().enumerate() {
+        if k > 0 {
+            s.push(',');
+        }
+        s.push('{');
+        for (i, (h, v)) in HEAD.iter().zip(fields(p)).enumerate() {
+            if i > 0 {
+                s.push(',');
+            }
+            // v0_c exactly, as a string (a JSON number reader would round it)
+            if *h == "v0_c" {
+                s.push_str(&format!("\"{h}\":\"{v}\""));
+            } else {
+                s.push_str(&format!("\"{h}\":{v}"));
+            }
+        }
+        s.push('}');
+    }
+    s.push_str("]}\n");
+    s.into_bytes()
+}
+
+/// The base set and the range of v0 of a `--band` case.
+fn band_case(
+    kind: ModelKind,
+    cases: &[Case<Interval>],
+) -> Result<(NdParams<Interval>, f64, f64), CliError> {
+    let [c] = cases else {
+        return Err(CliError::Input(format!(
+            "--band needs one range of v0 (a..b), not {} speeds",
+            cases.len()
+        )));
+    };
+    let (Some(base), Some(v0)) = (&c.base, c.v0) else {
+        return Err(CliError::Input(
+            "--band needs --base (or --physical) and --v0 a..b".into(),
+        ));
+    };
+    if !bwcl::observables::sets::is_range(&v0) {
+        return Err(CliError::Input(
+            "--band needs a range of v0 (a..b), not one speed".into(),
+        ));
+    }
+    let _ = kind;
+    Ok((base.clone(), v0.inf(), v0.sup()))
+}
+
+/// `cor --rigorous --band FILE`: the proved band, written to FILE; the summary on stdout.
+pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
+    input::out_path(Some(path))?;
+    let kind = ModelKind::from(a.params.model);
+    let opts: TaylorOptions = input::taylor_options(&a.engine)?;
+    let cases = input::cases::<Interval>(&a.params)?;
+    let (base, lo, hi) = band_case(kind, &cases)?;
+    let bo = BandOptions {
+        thickness: a.thickness.unwrap_or(1e-6),
+        ..BandOptions::default()
+    };
+    let start = std::time::Instant::now();
+    let band = prove_band(kind, &base, lo, hi, &bo, &opts)
+        .map_err(|e| CliError::Failed(format!("band not proved: {}", e.reason)))?;
+    let secs = start.elapsed().as_secs_f64();
+    let thick = band.thickness();
+    let bytes = if path.extension().is_some_and(|e| e == "json") {
+        let meta = format!(
+            "\"model\":\"{}\",\"v0\":[{},{}],\"pieces_count\":{},\"thickness\":{},\"seconds\":{secs:.3}",
+            kind.name(),
+            outward(lo, Rounding::Up),
+            outward(hi, Rounding::Down),
+            band.pieces.len(),
+            outward(thick, Rounding::Up)
+        );
+        json(&band.pieces, &meta)
+    } else {
+        output::csv(&HEAD, band.pieces.iter().map(fields))?
+    };
+    output::emit(Some(path), &bytes)?;
+    let summary = format!(
+        "proved band of e over v0 in [{}, {}]: {} pieces, thickness ≤ {}, e in [{}, {}], {secs:.1} s\n",
+        outward(lo, Rounding::Up),
+        outward(hi, Rounding::Down),
+        band.pieces.len(),
+        outward(thick, Rounding::Up),
+        outward(
+            band.pieces
+                .iter()
+                .map(|p| p.e.inf())
+                .fold(f64::INFINITY, f64::min),
+            Rounding::Down
+        ),
+        outward(
+            band.pieces
+                .iter()
+                .map(|p| p.e.sup())
+                .fold(f64::NEG_INFINITY, f64::max),
+            Rounding::Up
+        ),
+    );
+    output::emit(None, summary.as_bytes())?;
+    Ok(super::EXIT_OK)
+}
+
+/// `prove monotone`.
+pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
+    let kind = ModelKind::from(a.model);
+    let base = NdParams::<Interval>::parse(kind, &a.base).map_err(|e| {
+        CliError::Input(format!(
+            "--base '{}': {}",
+            bwcl::fit::data::echo(&a.base),
+            e.0
+        ))
+    })?;
+    // the decimals enclosed as written: the claim covers the range the user wrote
+    let range =
+        a.v0.contains("..")
+            .then(|| <Interval as bwcl::arith::Real>::parse_decimal(&a.v0));
+    let (lo, hi) = match range {
+        Some(Ok(r)) => (r.inf(), r.sup()),
+        _ => (f64::NAN, f64::NAN),
+    };
+    if lo.is_nan() {
+        return Err(CliError::Input(format!(
+            "--v0 '{}': expected a range a..b of two numbers",
+            bwcl::fit::data::echo(&a.v0)
+        )));
+    };
+    if !(lo > 0.0 && lo < hi && hi.is_finite()) {
+        return Err(CliError::Input(format!(
+            "--v0 '{}': expected 0 < a < b (finite)",
+            bwcl::fit::data::echo(&a.v0)
+        )));
+    }
+    let start = std::time::Instant::now();
+    let m = prove_decreasing(
+        kind,
+        &base,
+        lo,
+        hi,
+        &BandOptions {
+            min_width: (hi - lo) * 1e-6,
+            ..BandOptions::default()
+        },
+        &TaylorOptions::default(),
+    );
+    let secs = start.elapsed().as_secs_f64();
+    let text = match a.format {
+        ReportFormat::Json => {
+            let und: Vec<String> = m
+                .undecided
+                .iter()
+                .map(|(a, b, why)| {
+                    format!(
+                        "{{\"v0\":[{},{}],\"reason\":{}}}",
+                        outward(*a, Rounding::Down),
+                        outward(*b, Rounding::Up),
+                        serde_json::to_string(why).unwrap_or_default()
+                    )
+                })
+                .collect();
+            format!(
+                "{{\"model\":\"{}\",\"v0\":[{},{}],\"proved_decreasing\":{},\"pieces\":{},\"max_slope\":{},\"undecided\":[{}],\"seconds\":{secs:.3}}}\n",
+                kind.name(),
+                outward(lo, Rounding::Up),
+                outward(hi, Rounding::Down),
+                m.proved(),
+                m.pieces.len(),
+                if m.pieces.is_empty() {
+                    "null".into()
+                } else {
+                    outward(m.max_slope(), Rounding::Up)
+                },
+                und.join(",")
+            )
+        }
+        ReportFormat::Table => {
+            if m.proved() {
+                format!(
+                    "PROVED: e(v0) is strictly decreasing for v0 in [{}, {}] ({} pieces, de/dv0 ≤ {} < 0 on each), {secs:.1} s\n",
+                    outward(lo, Rounding::Up),
+                    outward(hi, Rounding::Down),
+                    m.pieces.len(),
+                    outward(m.max_slope(), Rounding::Up)
+                )
+            } else {
+                let mut s = format!(
+                    "NOT PROVED on all of [{}, {}]: decreasing on {} pieces; undecided on:\n",
+                    outward(lo, Rounding::Up),
+                    outward(hi, Rounding::Down),
+                    m.pieces.len()
+                );
+                for (a, b, why) in &m.undecided {
+                    s.push_str(&format!(
+                        "  [{}, {}]: {why}\n",
+                        outward(*a, Rounding::Down),
+                        outward(*b, Rounding::Up)
+                    ));
+                }
+                s
+            }
+        }
+    };
+    output::emit(None, text.as_bytes())?;
+    Ok(if m.proved() {
+        super::EXIT_OK
+    } else {
+        super::EXIT_FAILED
+    })
+}
