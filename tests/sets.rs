@@ -198,7 +198,7 @@ fn monotonicity_is_proved_and_refused() {
     let opts = TaylorOptions::default();
     let bo = BandOptions {
         initial: 4,
-        min_width: 1e-3,
+        min_width: 0.05,
         ..BandOptions::default()
     };
     let dss = NdParams::parse(ModelKind::Shc, DSS_SHC).unwrap();

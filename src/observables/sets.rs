@@ -507,13 +507,38 @@ where
         x0[i] = *s.v.value();
     }
     let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
-    // the derivatives over the event's state enclosure
+    // the derivatives over the event's state enclosure, each tightened by its time-centred
+    // form q(T_s) ∈ q(Φ(T_m)) + q′(Φ([T_s]))·([T_s] − T_m), T_m the middle of [T_s] (the box of
+    // Φ at the point T_m has no spread in time)
     let mut ws = Workspace::default();
     let o = tape.eval(&ev.state);
-    let (df_du, dv_du) = (o[D + 2], o[D + 3]);
-    let slope = tape.jet(&ev.state, 1, &mut ws).ok().and_then(|_| {
-        let df_dt = tape.output_coef(&ws, 1, D, 1);
-        let dv_dt = tape.output_coef(&ws, 1, D + 1, 1);
+    let tm = ev.ts.mid();
+    let dt = ev.ts - Interval::try_from((tm, tm)).unwrap();
+    let at_m = flow.enclose(tm);
+    let om = at_m.as_ref().map(|s| tape.eval(s));
+    let mut ws_m = Workspace::default();
+    let jet_m = at_m
+        .as_ref()
+        .is_some_and(|s| tape.jet(s, 1, &mut ws_m).is_ok());
+    let jet = tape.jet(&ev.state, 2, &mut ws).is_ok();
+    // the value of output j at T_s, and its time derivative
+    let value = |j: usize| match (&om, jet) {
+        (Some(om), true) => (om[j] + tape.output_coef(&ws, 2, j, 1) * dt).intersection(o[j]),
+        _ => o[j],
+    };
+    let rate = |j: usize| {
+        let whole = tape.output_coef(&ws, 2, j, 1);
+        if jet_m {
+            let c2 = tape.output_coef(&ws, 2, j, 2);
+            (tape.output_coef(&ws_m, 1, j, 1) + c2.mul_int(2) * dt).intersection(whole)
+        } else {
+            whole
+        }
+    };
+    let (df_du, dv_du) = (value(D + 2), value(D + 3));
+    let slope = jet.then_some(()).and_then(|_| {
+        let df_dt = rate(D);
+        let dv_dt = rate(D + 1);
         let (f, v) = (o[D], o[D + 1]);
         if v.inf() > 0.0 && df_dt.sup() < 0.0 {
             // F = 0 crossed downwards with V > 0
