@@ -221,6 +221,46 @@ fn q_inverse_encloses_the_exact_inverse() {
 }
 
 #[test]
+fn q_inverse_of_scaled_rotations_encloses_the_exact_inverse() {
+    // Q = s·O (O a rotation in doubles, s ≠ 1): R = Qᵀ, E = I − RQ ≈ (1 − s²)I, and
+    // Q⁻¹ − R ≈ (1/s − s)Oᵀ. Where ‖R‖_∞ = s‖Oᵀ‖_∞ > 1 (up to s√3) the factor ‖R‖ of the
+    // error term e/(1 − e)·‖R‖ matters: e/(1 − e)/‖R‖ (`* → /`) excludes the exact inverse
+    // for most of these matrices, which diagonal Q (‖R‖ ≤ 1.2) and rotations (e ~ 1e-16)
+    // cannot show.
+    let mut checked = 0;
+    let mut tightest = 0.0f64;
+    for k in 1..200 {
+        let (a, b) = (0.037 * k as f64, 0.011 * k as f64 + 0.3);
+        let (sa, ca, sb, cb) = (a.sin(), a.cos(), b.sin(), b.cos());
+        let o = [
+            [ca, -sa * cb, sa * sb],
+            [sa, ca * cb, -ca * sb],
+            [0.0, sb, cb],
+        ];
+        for s in [0.9, 0.95, 1.05, 1.1] {
+            let q = o.map(|row| row.map(|x| s * x));
+            let qi = inverse_enclosure(&q).expect("e < 0.5");
+            let exact = inverse_holds_exact(&q, &qi, &format!("k = {k}, s = {s}"));
+            checked += 1;
+            // how much of the error term the exact inverse uses (teeth: a bound several
+            // times smaller would fail above)
+            for i in 0..3 {
+                for j in 0..3 {
+                    let off = (exact[i][j].clone() - Rational::from_f64(q[j][i]).unwrap()).abs();
+                    let rad = Rational::from_f64(qi[i][j].rad()).unwrap();
+                    tightest = tightest.max((off / rad).to_f64());
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 199 * 4);
+    assert!(
+        tightest > 0.4,
+        "the exact inverse uses only {tightest} of the error term"
+    );
+}
+
+#[test]
 fn newton_claims_no_root_it_has_not_proved() {
     // g(t) = a (t − r) on T = [0, 1] with a derivative enclosure [a/w, a·w] (valid, loose):
     // Root only if r ∈ T (and then it holds r), never for r outside T

@@ -472,6 +472,39 @@ mod tests {
         }
     }
 
+    /// Many three-way terms whose recursive sum rounds the same way at every step (N copies
+    /// of a double below 1): the sum's error grows like N²u while a bound that did not count
+    /// the terms stays ~4u·A. Each three-way term counts twice in n (see [`IntervalDot`]).
+    #[test]
+    fn many_three_way_terms_count_in_the_error_bound() {
+        let one = iv(1.0, 1.0);
+        for (x, n) in [(0.1, 100), (0.3, 300), (0.7, 1000), (1.0 / 3.0, 300)] {
+            let terms: Vec<(Interval, Interval, Interval)> =
+                (0..n).map(|_| (one, iv(x, x), one)).collect();
+            let mut d = IntervalDot::new();
+            let mut du = UlpDot::new();
+            for (f, a, b) in &terms {
+                d.add_prod3(f, a, b);
+                du.add_prod3(&Ulp::of(*f), &Ulp::of(*a), &Ulp::of(*b));
+            }
+            let e = exact3(&terms);
+            let (r, ru) = (d.sum(), du.sum().interval());
+            assert!(encloses(r, &e), "{n} × {x}: {r:?}");
+            assert!(encloses(ru, &e), "{n} × {x} (Ulp): {ru:?}");
+        }
+    }
+
+    /// The plain accumulator sums the products in the type's own arithmetic.
+    #[test]
+    fn plain_sums_are_the_sums_of_products() {
+        let mut d = PlainDot::<Interval>::new();
+        d.add_prod(&iv(1.0, 2.0), &iv(3.0, 3.0));
+        d.add_prod(&iv(-1.0, -1.0), &iv(2.0, 2.0));
+        d.add_prod(&iv(0.5, 0.5), &iv(-4.0, 2.0));
+        assert_eq!(d.sum(), iv(-1.0, 5.0));
+        assert_eq!(PlainDot::<Interval>::new().sum(), iv(0.0, 0.0));
+    }
+
     #[test]
     fn three_way_terms_are_tight_on_thin_data() {
         // the width is that of the rounding errors: ≤ (2n + 1)·u·Σ|terms| (n = 21)
@@ -607,5 +640,21 @@ mod tests {
         assert!(z.contains(0.0) && z.wid() < 1e-300, "{z:?}");
         let e = dot(&[]);
         assert!(e.contains(0.0) && e.wid() < 1e-300, "{e:?}");
+        // finite sums whose sum of magnitudes overflows (on one side only): no error bound
+        let m = f64::MAX;
+        let c = dot(&[(iv(-m, 0.0), one), (iv(0.6 * m, 0.6 * m), one)]);
+        assert_eq!(c, Interval::ENTIRE, "{c:?}");
+        // as many terms as the error bound is proved for, then one more
+        let mut d = IntervalDot::new();
+        for _ in 0..MAX_TERMS {
+            d.add_prod(&one, &one);
+        }
+        let full = d.sum();
+        assert!(
+            full.contains(MAX_TERMS as f64) && full.wid() < 1.0,
+            "{full:?}"
+        );
+        d.add_prod(&one, &one);
+        assert_eq!(d.sum(), Interval::ENTIRE);
     }
 }

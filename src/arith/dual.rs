@@ -311,4 +311,38 @@ mod tests {
             assert!((b - e).abs() < 1e-13);
         }
     }
+
+    /// Σ f·a·b over duals (the three-way terms of the power recurrence) is the product rule
+    /// applied to each term, for a constant factor f and for one with derivatives; checked on
+    /// exactly representable values.
+    #[test]
+    fn three_way_terms_of_duals_follow_the_product_rule() {
+        use crate::arith::dot::Dot;
+        use inari::Interval;
+        let p = |x: f64| Interval::try_from((x, x)).unwrap();
+        let dual = |v: f64, d0: f64, d1: f64| Dual::<Interval, 2> {
+            v: p(v),
+            d: [p(d0), p(d1)],
+        };
+        let (a, b) = (dual(2.0, 1.0, 0.5), dual(3.0, 0.0, -1.0));
+        // f constant: 5ab + ab = 6ab, (6ab)' = 6(a′b + ab′)
+        let mut s = DualDot::<Interval, 2>::new();
+        s.add_prod3(&dual(5.0, 0.0, 0.0), &a, &b);
+        s.add_prod(&a, &b);
+        let s = s.sum();
+        // f = (5, 1, 0): (fab)' = f′ab + fa′b + fab′
+        let mut t = DualDot::<Interval, 2>::new();
+        t.add_prod3(&dual(5.0, 1.0, 0.0), &a, &b);
+        let t = t.sum();
+        for (got, want) in [
+            (s.v, 36.0),
+            (s.d[0], 18.0),
+            (s.d[1], -3.0),
+            (t.v, 30.0),
+            (t.d[0], 21.0),
+            (t.d[1], -2.5),
+        ] {
+            assert!(got.contains(want) && got.wid() < 1e-12, "{got:?} ∌ {want}");
+        }
+    }
 }

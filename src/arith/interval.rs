@@ -365,6 +365,7 @@ mod tests {
         let w = Interval::try_from((-1.5, 2.5)).unwrap();
         assert_eq!(w.mul_int(-2), Interval::try_from((-5.0, 3.0)).unwrap());
         assert_eq!(w.div_int(2), Interval::try_from((-0.75, 1.25)).unwrap());
+        assert_eq!(w.mul_int(0), Interval::try_from((0.0, 0.0)).unwrap());
         assert_eq!(Interval::ENTIRE.mul_int(3), Interval::ENTIRE);
         assert_eq!(
             Interval::ENTIRE.mul_int(0),
@@ -407,5 +408,126 @@ mod tests {
         // a tight check: spow([−1, −1], 3) = −1 exactly
         let m1 = Interval::try_from((-1.0, -1.0)).unwrap();
         assert_eq!(m1.spow(&Interval::from_int(3)), m1);
+    }
+
+    /// spow and apow of intervals of either sign, over an exponent interval, against MPFR
+    /// (256 bits) at the extreme points (both are monotone in x on each sign and in q): the
+    /// enclosure holds the exact range and is at most a few ulps wider at each end.
+    #[test]
+    fn signed_and_absolute_powers_are_tight_against_mpfr() {
+        use rug::Float;
+        use rug::ops::Pow;
+        let pw = |x: f64, e: f64, signed: bool| -> Float {
+            let m = Float::with_val(256, x.abs()).pow(Float::with_val(256, e));
+            if signed && x < 0.0 { -m } else { m }
+        };
+        let near = |enc: f64, exact: &Float| {
+            let e = exact.to_f64();
+            (enc - e).abs() <= 8.0 * f64::EPSILON * e.abs() + 1e-300
+        };
+        let exps = [
+            enclose_decimal("1.27").unwrap(),
+            enclose_decimal("2.5").unwrap(),
+            enclose_decimal_or_range("0.8..1.3").unwrap(),
+            Interval::from_int(2),
+            Interval::from_int(3),
+        ];
+        for q in exps {
+            for (a, b) in [
+                (-0.3, 0.7),
+                (-2.0, 0.5),
+                (-2.0, -0.5),
+                (0.1, 3.0),
+                (-1.5, 2.5),
+            ] {
+                let x = Interval::try_from((a, b)).unwrap();
+                // signed: increasing in x; the extremes over q at q's ends
+                let s = x.spow(&q);
+                let lo = pw(a, q.inf(), true).min(&pw(a, q.sup(), true));
+                let hi = pw(b, q.inf(), true).max(&pw(b, q.sup(), true));
+                assert!(s.inf() <= lo && hi <= s.sup(), "spow({x:?}, {q:?}) = {s:?}");
+                // (q = 2 across 0 is |x|·x, which overestimates: [−0.21, 0.49] ⊋ [−0.09, 0.49])
+                let dependent = q.as_integer() == Some(2) && a < 0.0 && b > 0.0;
+                assert!(
+                    dependent || near(s.inf(), &lo) && near(s.sup(), &hi),
+                    "spow({x:?}, {q:?}) = {s:?}"
+                );
+                // absolute: 0 inside a straddling x, else the nearer end
+                let ap = x.apow(&q);
+                let far = if a.abs() > b.abs() { a } else { b };
+                let hi = pw(far, q.inf(), false).max(&pw(far, q.sup(), false));
+                let lo = if a < 0.0 && b > 0.0 {
+                    Float::with_val(256, 0)
+                } else {
+                    let n = if a.abs() < b.abs() { a } else { b };
+                    pw(n, q.inf(), false).min(&pw(n, q.sup(), false))
+                };
+                assert!(
+                    ap.inf() <= lo && hi <= ap.sup(),
+                    "apow({x:?}, {q:?}) = {ap:?}"
+                );
+                assert!(
+                    near(ap.inf(), &lo) && near(ap.sup(), &hi),
+                    "apow({x:?}, {q:?}) = {ap:?}"
+                );
+            }
+        }
+    }
+
+    /// mul_constant (in `Ulp` arithmetic) encloses the exact product of the ends and equals
+    /// inari's product; pow refuses a base below 0; the small integer exponents are exact;
+    /// empty operands stay empty; unbounded operands of x/k take inari's quotient.
+    #[test]
+    fn constant_products_and_power_special_cases() {
+        use rug::Rational;
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        for (x, c) in [
+            (iv(0.1, 0.7), iv(3.0, 3.0)),
+            (iv(-0.3, 0.7), iv(-2.5, 1.0 / 3.0)),
+            (iv(-5.0, -0.1), iv(0.1, 0.2)),
+            (iv(1e-20, 3e-20), iv(-1e-10, -1e-11)),
+        ] {
+            let m = x.mul_constant(&c);
+            assert_eq!(m, x * c, "{x:?} · {c:?}");
+            let ends = [q(x.inf()) * q(c.inf()), q(x.inf()) * q(c.sup())];
+            let ends2 = [q(x.sup()) * q(c.inf()), q(x.sup()) * q(c.sup())];
+            for e in ends.iter().chain(&ends2) {
+                assert!(
+                    q(m.inf()) <= *e && *e <= q(m.sup()),
+                    "{x:?} · {c:?} = {m:?}"
+                );
+            }
+        }
+        let one = Interval::from_int(1);
+        assert!(Interval::EMPTY.mul_constant(&one).is_empty());
+        assert!(one.mul_constant(&Interval::EMPTY).is_empty());
+        // pow: the base must be ≥ 0
+        assert_eq!(
+            Real::pow(&iv(-1.0, 2.0), &Interval::from_int(2)),
+            Interval::ENTIRE
+        );
+        for (x, k, lo, hi) in [(iv(0.0, 2.0), 3, 0.0, 8.0), (iv(0.5, 2.0), 2, 0.25, 4.0)] {
+            let p = Real::pow(&x, &Interval::from_int(k));
+            assert!(
+                p.inf() <= lo && lo - p.inf() < 1e-14 && hi <= p.sup() && p.sup() - hi < 1e-14,
+                "{x:?}^{k} = {p:?}"
+            );
+        }
+        // the exact small exponents
+        for x in [iv(-0.3, 0.7), iv(-2.0, -0.5), iv(0.1, 3.0)] {
+            assert_eq!(x.spow(&one), x);
+            assert_eq!(x.apow(&one), Interval::abs(x));
+            assert_eq!(x.apow(&Interval::from_int(2)), x.sqr());
+            assert!(x.spow(&Interval::EMPTY).is_empty() && Interval::EMPTY.spow(&one).is_empty());
+        }
+        // unbounded operands: spow gives the whole line; x·k, x/k take inari's operation
+        let inf = f64::INFINITY;
+        let q = enclose_decimal("1.27").unwrap();
+        assert_eq!(iv(-inf, 1.0).spow(&q), Interval::ENTIRE);
+        assert_eq!(iv(-1.0, inf).spow(&q), Interval::ENTIRE);
+        assert_eq!(iv(1.0, inf).div_int(4), iv(0.25, inf));
+        assert_eq!(iv(-inf, 1.0).div_int(-4), iv(-0.25, inf));
+        assert_eq!(iv(1.0, inf).mul_int(-4), iv(-inf, -4.0));
     }
 }

@@ -345,4 +345,33 @@ mod tests {
         assert!(z.apow(&q).c[1].is_entire());
         assert!(z.abs().c[2].is_entire());
     }
+
+    /// The recurrences of the rigorous engine's powers on w = 2 + t (w₀ ≠ 1, so that a
+    /// product and a quotient by w₀ differ): k·L_k of ln(2 + t) is (−1)^(k+1)/2^k, and
+    /// (2 + t)³ = 8 + 12t + 6t² + t³ both by exp(3L) and by the power recurrence.
+    #[test]
+    fn log_exp_and_power_recurrences_on_two_plus_t() {
+        use inari::Interval;
+        let p = |x: f64| Interval::try_from((x, x)).unwrap();
+        let n = 6;
+        let mut w = vec![p(2.0), p(1.0)];
+        w.resize(n + 1, p(0.0));
+        let near = |got: Interval, want: f64| got.contains(want) && got.wid() < 1e-12;
+        let mut jl = vec![p(0.0); n + 1];
+        for k in 1..=n {
+            jl[k] = log_k(&w[..=k], &jl[..k], k);
+            let want = if k % 2 == 1 { 1.0 } else { -1.0 } / 2f64.powi(k as i32);
+            assert!(near(jl[k], want), "k·L_{k} = {:?}, want {want}", jl[k]);
+        }
+        let q = p(3.0);
+        let cube = [8.0, 12.0, 6.0, 1.0, 0.0, 0.0, 0.0];
+        let (mut ue, mut up) = (vec![p(8.0)], vec![p(8.0)]);
+        for k in 1..=n {
+            ue.push(exp_log_k(&jl[..=k], &ue[..k], &q, k));
+            let f: Vec<Interval> = pow_factors(&q, k).collect();
+            up.push(pow_k(&w[..=k], &up[..k], &f, k));
+            assert!(near(ue[k], cube[k]), "exp(3L)_{k} = {:?}", ue[k]);
+            assert!(near(up[k], cube[k]), "pow_{k} = {:?}", up[k]);
+        }
+    }
 }

@@ -481,9 +481,163 @@ mod tests {
             Ulp::point(0.0)
         );
         assert_eq!(Ulp::point(2.0).powi_nonneg(0), Ulp::point(1.0));
+        // x^n by binary powering encloses the exact power (a few exponents, both parities)
+        for n in [1u32, 2, 5, 6, 13] {
+            let x = Ulp { lo: 0.7, hi: 1.3 };
+            let p = x.powi_nonneg(n);
+            let rp = |x: f64| (0..n).fold(Rational::from(1), |acc, _| acc * q(x));
+            let (lo, hi) = (rp(0.7), rp(1.3));
+            assert!(contains(p, &lo, &hi), "[0.7, 1.3]^{n} = {p:?}");
+            assert!(
+                p.hi < 1.3f64.powi(n as i32) * (1.0 + 1e-14),
+                "[0.7, 1.3]^{n} = {p:?}"
+            );
+        }
         let c = Ulp::point(1.0 / 3.0).powi_nonneg(3);
         let t = q(1.0 / 3.0);
         let t3 = Rational::from(&t * &t) * &t;
         assert!(contains(c, &t3, &t3), "{c:?}");
+    }
+
+    /// A result that overflows is bounded on its finite side by ±MAX, not by ±∞ (an upper end
+    /// −∞ or a lower end +∞ would exclude the exact, finite value). Checked on the `Ulp` ends
+    /// themselves: [`Ulp::interval`] would turn such an end pair into [−∞, +∞].
+    #[test]
+    fn overflow_keeps_the_finite_side_at_max() {
+        let m = f64::MAX;
+        let (pos, neg) = (
+            Ulp {
+                lo: m,
+                hi: f64::INFINITY,
+            },
+            Ulp {
+                lo: f64::NEG_INFINITY,
+                hi: -m,
+            },
+        );
+        let (p, n2, h) = (Ulp::point(m), Ulp::point(2.0), Ulp::point(0.5));
+        assert_eq!(p + p, pos);
+        assert_eq!(-p - p, neg);
+        assert_eq!(p * n2, pos);
+        assert_eq!(-p * n2, neg);
+        assert_eq!(p * -n2, neg);
+        assert_eq!(p / h, pos);
+        assert_eq!(-p / h, neg);
+        assert_eq!(p / -h, neg);
+        assert_eq!(p.mul_int(3), pos);
+        assert_eq!(p.mul_int(-3), neg);
+    }
+
+    /// Results that are exact doubles are returned exactly (no outward step): the residual
+    /// decides the step, and a zero residual means none. Quotients of both divisor signs and
+    /// every case of the sign table.
+    #[test]
+    fn exact_results_are_not_widened() {
+        let u = |lo: f64, hi: f64| Ulp { lo, hi };
+        for (x, y, quo) in [
+            (u(3.0, 6.0), u(1.5, 1.5), u(2.0, 4.0)),
+            (u(3.0, 6.0), u(-1.5, -1.5), u(-4.0, -2.0)),
+            (u(-6.0, -3.0), u(1.5, 1.5), u(-4.0, -2.0)),
+            (u(-6.0, -3.0), u(-1.5, -1.5), u(2.0, 4.0)),
+            (u(-6.0, 3.0), u(1.5, 3.0), u(-4.0, 2.0)),
+            (u(-6.0, 3.0), u(-3.0, -1.5), u(-2.0, 4.0)),
+            (u(3.0, 6.0), u(1.5, 3.0), u(1.0, 4.0)),
+            (u(3.0, 6.0), u(-3.0, -1.5), u(-4.0, -1.0)),
+        ] {
+            assert_eq!(x / y, quo, "{x:?} / {y:?}");
+        }
+        for (x, y, prod) in [
+            (u(1.5, 3.0), u(2.0, 4.0), u(3.0, 12.0)),
+            (u(1.5, 3.0), u(-4.0, -2.0), u(-12.0, -3.0)),
+            (u(-3.0, -1.5), u(2.0, 4.0), u(-12.0, -3.0)),
+            (u(-3.0, -1.5), u(-4.0, -2.0), u(3.0, 12.0)),
+            (u(-3.0, 1.5), u(2.0, 4.0), u(-12.0, 6.0)),
+            (u(-3.0, 1.5), u(-4.0, 2.0), u(-6.0, 12.0)),
+        ] {
+            assert_eq!(x * y, prod, "{x:?} · {y:?}");
+        }
+        assert_eq!(u(0.25, 0.5) + u(1.0, 2.0), u(1.25, 2.5));
+        assert_eq!(u(0.25, 0.5) - u(1.0, 2.0), u(-1.75, -0.5));
+    }
+
+    /// |x| is [x] for x ≥ 0, −[x] for x ≤ 0, [0, max(−lo, hi)] across 0.
+    #[test]
+    fn abs_is_the_exact_range() {
+        let u = |lo: f64, hi: f64| Ulp { lo, hi };
+        assert_eq!(Real::abs(&u(1.0, 2.0)), u(1.0, 2.0));
+        assert_eq!(Real::abs(&u(0.0, 2.0)), u(0.0, 2.0));
+        assert_eq!(Real::abs(&u(-3.0, -2.0)), u(2.0, 3.0));
+        assert_eq!(Real::abs(&u(-3.0, 0.0)), u(0.0, 3.0));
+        assert_eq!(Real::abs(&u(-3.0, 2.0)), u(0.0, 3.0));
+        assert_eq!(Real::abs(&u(-2.0, 3.0)), u(0.0, 3.0));
+    }
+
+    /// x·k and x/k for an integer k enclose the exact rational ends, equal the inari
+    /// implementation ([`super::super::interval`]), and x·0 = 0.
+    #[test]
+    fn integer_scalings_enclose_the_exact_value() {
+        let mut seed = 0x853c49e6748fea9b_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let float = |r: u64| {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let e = (r % 2000) as i32 - 1000;
+            if r & 2048 != 0 {
+                -m * 2f64.powi(e)
+            } else {
+                m * 2f64.powi(e)
+            }
+        };
+        for _ in 0..20_000 {
+            let (a, b) = (float(next()), float(next()));
+            let x = Ulp {
+                lo: a.min(b),
+                hi: a.max(b),
+            };
+            let k = [1i64, 2, 3, 7, 20, -1, -3, -12345, 1 << 40][(next() % 9) as usize];
+            let kq = Rational::from(k);
+            let (xl, xh) = (q(x.lo), q(x.hi));
+            let m = x.mul_int(k);
+            let (ml, mh) = (Rational::from(&xl * &kq), Rational::from(&xh * &kq));
+            let (lo, hi) = if k > 0 { (ml, mh) } else { (mh, ml) };
+            if m.lo.is_finite() && m.hi.is_finite() {
+                assert!(contains(m, &lo, &hi), "{x:?}·{k} = {m:?}");
+            }
+            assert_eq!(m.interval(), Real::mul_int(&x.interval(), k), "{x:?}·{k}");
+            let d = x.div_int(k);
+            let (dl, dh) = (Rational::from(&xl / &kq), Rational::from(&xh / &kq));
+            let (lo, hi) = if k > 0 { (dl, dh) } else { (dh, dl) };
+            assert!(contains(d, &lo, &hi), "{x:?}/{k} = {d:?}");
+            assert_eq!(d.interval(), Real::div_int(&x.interval(), k), "{x:?}/{k}");
+        }
+        assert_eq!(Ulp { lo: -2.0, hi: 3.0 }.mul_int(0), Ulp::point(0.0));
+        assert_eq!(
+            Ulp { lo: -2.0, hi: 3.0 }.mul_int(-2),
+            Ulp { lo: -6.0, hi: 4.0 }
+        );
+        assert_eq!(
+            Ulp { lo: -2.0, hi: 3.0 }.div_int(-2),
+            Ulp { lo: -1.5, hi: 1.0 }
+        );
+        // unbounded operands take the fallback through the interval operations
+        let inf = f64::INFINITY;
+        let d = Ulp { lo: 1.0, hi: inf }.div_int(3);
+        assert!(q(d.lo) <= Rational::from((1, 3)) && d.hi == inf, "{d:?}");
+        assert!(d.lo >= (1.0f64 / 3.0).next_down(), "{d:?}");
+        let d = Ulp { lo: 1.0, hi: inf }.div_int(-3);
+        assert!(d.lo == -inf && q(d.hi) >= Rational::from((-1, 3)), "{d:?}");
+        assert!(d.hi <= (-1.0f64 / 3.0).next_up(), "{d:?}");
+        assert_eq!(
+            Ulp { lo: -inf, hi: 2.0 }.mul_int(-3),
+            Ulp { lo: -6.0, hi: inf }
+        );
+        assert_eq!(
+            Ulp { lo: -inf, hi: 2.0 }.mul_int(3),
+            Ulp { lo: -inf, hi: 6.0 }
+        );
     }
 }
