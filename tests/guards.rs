@@ -550,3 +550,30 @@ fn the_proved_flow_holds_the_harmonic_solution_everywhere() {
     assert!(flow.enclose(flow.t_end().next_up()).is_none());
     assert!(flow.enclose(f64::NAN).is_none());
 }
+
+/// An undecided stretch is not forgotten (the engine's `pending` arm, issue #12's last
+/// survivor `mod.rs:282`): the toy t′ = 1, F = (t − 1)²(5/2 − t), V = 1 grazes F = 0 at t = 1
+/// — there the condition F ≤ 0 ∧ V ≥ 0 holds, so T_s = 1 exactly — and crosses cleanly at
+/// t = 5/2. The engine cannot decide the graze; it must then report it (or an enclosure
+/// containing 1), never the clean crossing alone.
+#[test]
+fn an_undecided_graze_is_not_skipped_for_a_later_crossing() {
+    use bwcl::engines::taylor::integrate_system;
+    let c = |x: f64| Interval::try_from((x, x)).unwrap();
+    let tape = Tape::<Interval, 1>::record(|v| {
+        let t = v[0].clone();
+        let d = t.shift(&c(-1.0));
+        let f = d.clone() * d * (-t.clone()).shift(&c(2.5));
+        // t′ = 1 and V = 1, written through the state so that they are nodes of the tape
+        let one = t.scale(&c(0.0)).shift(&c(1.0));
+        vec![one.clone(), f, one]
+    });
+    match integrate_system(&tape, [c(0.0)], 1, &TaylorOptions::default()) {
+        Ok((_, ev)) => assert!(
+            ev.ts.contains(1.0),
+            "T_s = 1 (the graze) is not in the reported {:?}",
+            ev.ts
+        ),
+        Err(e) => assert!(e.reason.contains("grazing"), "{e}"),
+    }
+}
