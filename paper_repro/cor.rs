@@ -1,14 +1,11 @@
 //! Fig. 3 (fig:CoR): the CoR against v0 of the four Table 1 (tab:param) base sets, by the f64
-//! DOP853 engine (the paper's settings), and with --rigorous as proved enclosures.
+//! DOP853 engine (the paper's settings), and with --rigorous as the continuous proved band.
 
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::fit::cost::model_cor;
-use bwcl::models::scaling::nd_from_base;
-use bwcl::models::{Maxwell, ModelKind, NdParams, Shc};
+use bwcl::models::{ModelKind, NdParams};
 use bwcl::observables::FloatOptions;
-use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
-use rayon::prelude::*;
 
 /// One column of Table 1.
 pub struct Table1Set {
@@ -75,31 +72,37 @@ pub struct Proved {
     pub seconds: f64,
 }
 
-/// The proved enclosures of one set at every speed (the base set enclosed as written, each v0
-/// the exact double of the grid).
-pub fn rigorous_curve(set: &Table1Set, v0: &[f64]) -> Vec<Proved> {
+/// The continuous proved band of e over v0 ∈ [a, b] for one set ([`bwcl::observables::band`]):
+/// the enclosure of e at the ends and the centre of every piece (its bounds are linear in v0
+/// between them), the piece count and the band's thickness; or why it was not proved.
+pub fn band_curve(
+    set: &Table1Set,
+    a: f64,
+    b: f64,
+    thickness: f64,
+) -> Result<(Vec<Proved>, usize, f64), String> {
+    use bwcl::observables::band::{BandOptions, prove_band};
     let base = NdParams::<Interval>::parse(set.kind, set.base).expect("Table 1 sets are in 𝓟");
-    let opts = TaylorOptions::default();
-    v0.par_iter()
-        .map(|&v| {
-            let t0 = std::time::Instant::now();
-            let iv = Interval::try_from((v, v)).expect("a finite speed");
-            let e = nd_from_base(set.kind, &base, &iv)
-                .map_err(|e| e.to_string())
-                .and_then(|p| match set.kind {
-                    ModelKind::Shc => rigorous_impact(&Shc::new(p), &opts)
-                        .map(|r| r.e)
-                        .map_err(|e| e.to_string()),
-                    ModelKind::Maxwell => rigorous_impact(&Maxwell::new(p), &opts)
-                        .map(|r| r.e)
-                        .map_err(|e| e.to_string()),
-                })
-                .map(|e| (e.inf(), e.sup()));
-            Proved {
+    let t0 = std::time::Instant::now();
+    let bo = BandOptions {
+        thickness,
+        ..BandOptions::default()
+    };
+    let band = prove_band(set.kind, &base, a, b, &bo, &TaylorOptions::default())
+        .map_err(|e| e.to_string())?;
+    let secs = t0.elapsed().as_secs_f64() / band.pieces.len().max(1) as f64;
+    let mut pts = Vec::with_capacity(3 * band.pieces.len());
+    for p in &band.pieces {
+        for v in [p.v0_lo, p.v0_c, p.v0_hi] {
+            let e = p
+                .e_at(Interval::try_from((v, v)).expect("finite"))
+                .expect("inside its piece");
+            pts.push(Proved {
                 v0: v,
-                e,
-                seconds: t0.elapsed().as_secs_f64(),
-            }
-        })
-        .collect()
+                e: Ok((e.inf(), e.sup())),
+                seconds: secs / 3.0,
+            });
+        }
+    }
+    Ok((pts, band.pieces.len(), band.thickness()))
 }

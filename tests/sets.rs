@@ -167,6 +167,19 @@ fn band_contains_its_points_and_a_shifted_band_is_rejected() {
     for w in band.pieces.windows(2) {
         assert_eq!(w[0].v0_hi, w[1].v0_lo, "gap in the band");
     }
+    // the stated thickness bounds the enclosure at the ends (the centre need not be the middle)
+    for p in &band.pieces {
+        for v in [p.v0_lo, p.v0_hi] {
+            let w = p.e_at(iv(v, v)).unwrap().wid();
+            assert!(
+                w <= p.thickness(),
+                "[{}, {}] at {v}: {w:e} > {:e}",
+                p.v0_lo,
+                p.v0_hi,
+                p.thickness()
+            );
+        }
+    }
     let mut shifted_caught = 0;
     for k in 0..=20 {
         let v = 0.9 + 0.005 * k as f64;

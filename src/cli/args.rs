@@ -391,9 +391,10 @@ pub struct EngineArgs {
     #[arg(long, value_name = "K", allow_hyphen_values = true,
           value_parser = count(ORDER))]
     pub order: Option<usize>,
-    /// With --rigorous and a range of v0 (a..b): how many sub-ranges to prove, 1 ≤ N ≤ 1024
-    /// (the widest or unproved one is split first); the result is their hull, valid for every
-    /// v0 in a..b [default: 32]. Needs --rigorous.
+    /// With --rigorous and inputs given as ranges (a..b): a range is proved whole (the engine
+    /// carries the solution's dependence on it); one that cannot be is bisected along its
+    /// relatively widest input, into at most N sub-ranges, 1 ≤ N ≤ 1024, whose hull is the
+    /// result [default: 32]. Needs --rigorous.
     #[arg(long, value_name = "N", allow_hyphen_values = true,
           value_parser = count(PIECES))]
     pub pieces: Option<usize>,

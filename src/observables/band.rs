@@ -13,7 +13,8 @@
 //! (an affine form in v0: value at the centre, slope enclosure; the centre value's own width is
 //! its remainder), intersected with the hull of the piece's range enclosure. The band's
 //! *thickness* at v0 is the width of that enclosure of e(v0); a piece is split until its largest
-//! thickness, wid e(v_c) + wid[de/dv0]·(v_hi − v_lo)/2, is below the target.
+//! thickness, wid e(v_c) + wid[de/dv0]·max(v_hi − v_c, v_c − v_lo), is below the target (v_c
+//! is a point with a short exact decimal in the middle half of the piece, printed exactly).
 //!
 //! **Monotonicity**: sup [de/dv0] < 0 on a piece proves e strictly decreasing there (e is C¹ in
 //! v0: the field is Lipschitz and piecewise C¹ with transversal crossings, so the variational
@@ -47,15 +48,13 @@ pub struct BandPiece {
 impl BandPiece {
     /// The largest vertical width of the enclosure of e(v0) on the piece (rounded up).
     pub fn thickness(&self) -> f64 {
-        let half = (Interval::try_from((self.v0_hi, self.v0_hi)).unwrap()
-            - Interval::try_from((self.v0_lo, self.v0_lo)).unwrap())
-        .sup()
-            / 2.0;
-        let w = Interval::try_from((self.e_c.wid(), self.e_c.wid())).unwrap()
-            + Interval::try_from((self.de.wid(), self.de.wid())).unwrap()
-                * Interval::try_from((half, half)).unwrap();
-        // one more ulp: half was halved after rounding up
-        w.sup().next_up()
+        // the farther end from the centre (which need not be the middle), rounded up
+        let pt = |x: f64| Interval::try_from((x, x)).unwrap();
+        let c = pt(self.v0_c);
+        let reach = (pt(self.v0_hi) - c).sup().max((c - pt(self.v0_lo)).sup());
+        let w = pt(self.e_c.wid()) + pt(self.de.wid()) * pt(reach);
+        // wid() is rounded to nearest: one more ulp each
+        w.sup().next_up().next_up()
     }
 
     /// The enclosure of e(v0) for v0 in this piece (the affine form ∩ the hull); `None` if v0
