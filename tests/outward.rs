@@ -12,7 +12,7 @@ use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::scaling::{PhysicalParams, nd_from_base, parse_speeds};
 use bwcl::models::{Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::decimal::{Rounding, parse_rational};
-use bwcl::observables::rigorous::{rigorous_impact, rigorous_impact_over_speeds};
+use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
 use rug::Rational;
 use serde_json::value::RawValue;
@@ -106,7 +106,15 @@ fn expected(set: Set) -> Vec<Expected> {
                     let p = nd_from_base(kind, &b, &v).unwrap();
                     let (ts, e) = if wide(&v) {
                         let opts = TaylorOptions::default();
-                        let r = rigorous_impact_over_speeds(kind, &b, v, &opts, PIECES).unwrap();
+                        // the CLI's own computation of a range (issue #13)
+                        let inputs = bwcl::observables::sets::Inputs::Base {
+                            base: b.clone(),
+                            v0: v,
+                        };
+                        let (r, _) = bwcl::observables::sets::prove_over_set_split(
+                            kind, &inputs, &opts, PIECES,
+                        )
+                        .unwrap();
                         (r.ts, r.e)
                     } else {
                         prove(kind, p.clone())

@@ -210,8 +210,8 @@ fn band_contains_its_points_and_a_shifted_band_is_rejected() {
 fn monotonicity_is_proved_and_refused() {
     let opts = TaylorOptions::default();
     let bo = BandOptions {
-        initial: 4,
-        min_width: 0.05,
+        initial: 8,
+        min_width: 0.01,
         ..BandOptions::default()
     };
     let dss = NdParams::parse(ModelKind::Shc, DSS_SHC).unwrap();

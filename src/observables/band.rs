@@ -48,13 +48,19 @@ pub struct BandPiece {
 impl BandPiece {
     /// The largest vertical width of the enclosure of e(v0) on the piece (rounded up).
     pub fn thickness(&self) -> f64 {
-        // the farther end from the centre (which need not be the middle), rounded up
-        let pt = |x: f64| Interval::try_from((x, x)).unwrap();
-        let c = pt(self.v0_c);
-        let reach = (pt(self.v0_hi) - c).sup().max((c - pt(self.v0_lo)).sup());
-        let w = pt(self.e_c.wid()) + pt(self.de.wid()) * pt(reach);
-        // wid() is rounded to nearest: one more ulp each
-        w.sup().next_up().next_up()
+        // the affine form's width grows linearly away from the centre: its largest value is at
+        // an end, computed as the enclosure there is (rounding included), rounded up, plus a
+        // margin for the rounding of the evaluation at interior points
+        let width_up = |x: Interval| {
+            let p = |y: f64| Interval::try_from((y, y)).unwrap();
+            (p(x.sup()) - p(x.inf())).sup()
+        };
+        let c = Interval::try_from((self.v0_c, self.v0_c)).unwrap();
+        let at = |v: f64| self.e_c + self.de * (Interval::try_from((v, v)).unwrap() - c);
+        let w = width_up(at(self.v0_lo))
+            .max(width_up(at(self.v0_hi)))
+            .max(width_up(self.e_c));
+        w + 8.0 * f64::EPSILON * self.e.mag().max(1.0)
     }
 
     /// The enclosure of e(v0) for v0 in this piece (the affine form ∩ the hull); `None` if v0
