@@ -194,8 +194,9 @@ fn band_contains_its_points_and_a_shifted_band_is_rejected() {
             "v0 = {v}: {pt:?} not in {e:?} {ts:?}"
         );
         let mut bad = piece.clone();
-        bad.e_c = bad.e_c + iv(3.0 * bad.thickness(), 3.0 * bad.thickness());
-        bad.e = bad.e + iv(3.0 * bad.thickness(), 3.0 * bad.thickness());
+        let shift = iv(3.0 * bad.thickness(), 3.0 * bad.thickness());
+        bad.e_c += shift;
+        bad.e += shift;
         if !pt.e.subset(bad.e_at(iv(v, v)).unwrap()) {
             shifted_caught += 1;
         }
@@ -258,4 +259,22 @@ fn slopes_contain_difference_quotients() {
             piece.de
         );
     }
+}
+
+/// Sensitivities at a point (`cor --sensitivities`): ∂e/∂v0 at v0 = 1 is a thin enclosure and
+/// lies inside the slope enclosure over [0.999, 1.001].
+#[test]
+fn point_sensitivities_are_thin_and_inside_the_range_slopes() {
+    use bwcl::observables::sets::sensitivity;
+    let opts = TaylorOptions::default();
+    let at = base(ModelKind::Shc, DSS_SHC, Interval::one());
+    let s = sensitivity(ModelKind::Shc, &at, 6, &opts).unwrap();
+    assert!(s.e.wid() < 1e-6 && s.ts.wid() < 1e-6, "{s:?}");
+    let range = base(ModelKind::Shc, DSS_SHC, iv(0.999, 1.001));
+    let r = prove_over_set(ModelKind::Shc, &range, &opts).unwrap();
+    let slope = r.slope.unwrap();
+    assert!(
+        s.e.subset(slope.e) && s.ts.subset(slope.ts),
+        "{s:?} vs {slope:?}"
+    );
 }

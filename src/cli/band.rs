@@ -19,7 +19,7 @@ pub fn exact_decimal(x: f64) -> String {
     let (num, den) = r.into_numer_denom();
     // den = 2^m: x = num·5^m / 10^m
     let m = den.significant_bits() - 1;
-    let digits = (num.clone().abs() * Integer::from(5).pow(m as u32)).to_string();
+    let digits = (num.clone().abs() * Integer::from(5).pow(m)).to_string();
     let m = m as usize;
     let (int, frac) = if digits.len() > m {
         digits.split_at(digits.len() - m)

@@ -60,7 +60,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let start = std::time::Instant::now();
         let rows: Vec<RigorousRow> = cases
             .par_iter()
-            .map(|c| rigorous_row(kind, c, &opts, input::pieces(&a.engine)))
+            .map(|c| rigorous_row(kind, c, &opts, input::pieces(&a.engine), a.sensitivities))
             .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
@@ -187,6 +187,7 @@ fn rigorous_row(
     c: &Case<Interval>,
     opts: &TaylorOptions,
     pieces: usize,
+    sensitivities: bool,
 ) -> RigorousRow {
     // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
     // set, with the solution's dependence on them carried by the engine
@@ -211,6 +212,7 @@ fn rigorous_row(
         order: opts.order,
         params: params_interval(&c.params),
         reason: None,
+        sensitivities: None,
     };
     match res {
         Ok((ts, e)) => {
@@ -223,6 +225,28 @@ fn rigorous_row(
             row.ts_seconds = c.scales.as_ref().map(|s| Some(bounds(ts * s.t_c)));
         }
         Err(err) => row.reason = Some(err.to_string()),
+    }
+    if sensitivities {
+        let names = c.inputs.names();
+        row.sensitivities = Some(
+            (0..names.len())
+                .into_par_iter()
+                .map(|j| match sets::sensitivity(kind, &c.inputs, j, opts) {
+                    Ok(s) => output::Sensitivity {
+                        input: names[j],
+                        dts: Some(bounds(s.ts)),
+                        de: Some(bounds(s.e)),
+                        reason: None,
+                    },
+                    Err(e) => output::Sensitivity {
+                        input: names[j],
+                        dts: None,
+                        de: None,
+                        reason: Some(e.to_string()),
+                    },
+                })
+                .collect(),
+        );
     }
     row
 }

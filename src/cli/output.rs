@@ -82,6 +82,21 @@ pub struct RigorousRow {
     pub params: ParamsOut<[f64; 2]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
+    /// With --sensitivities: proved ∂T_s/∂u and ∂e/∂u of every input u (JSON only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensitivities: Option<Vec<Sensitivity>>,
+}
+
+/// Proved ∂T_s/∂u and ∂e/∂u of one input (bounds rounded outward), or why not.
+#[derive(Serialize, Clone, Debug)]
+pub struct Sensitivity {
+    pub input: &'static str,
+    #[serde(serialize_with = "json_pair")]
+    pub dts: Option<[f64; 2]>,
+    #[serde(serialize_with = "json_pair")]
+    pub de: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
 }
 
 /// The bounds of an interval.

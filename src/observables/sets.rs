@@ -115,7 +115,7 @@ impl<R: Real> Inputs<R> {
     /// The same kind of inputs with other values (in the order of [`Inputs::values`]).
     pub fn with_values<S: Real>(&self, vals: Vec<S>) -> Inputs<S> {
         let mut it = vals.into_iter();
-        let out = match self {
+        match self {
             Inputs::Nd(_) => Inputs::Nd(nd_of(&mut it)),
             Inputs::Base { .. } => {
                 let base = nd_of(&mut it);
@@ -139,8 +139,7 @@ impl<R: Real> Inputs<R> {
                 };
                 Inputs::Physical { phys, v0: next() }
             }
-        };
-        out
+        }
     }
 
     /// The nondimensional parameters (validated against 𝓟 for every value of the ranges).
@@ -168,7 +167,7 @@ impl<R: Real> Inputs<R> {
 /// power of two inside (so the affine forms anchored there can be printed exactly).
 pub fn short_centre(lo: f64, hi: f64) -> f64 {
     let m = lo + (hi - lo) / 2.0;
-    if !(lo < hi) || !m.is_finite() {
+    if lo >= hi || lo.is_nan() || hi.is_nan() || !m.is_finite() {
         return m;
     }
     // steps 2^k from above the width down: the first multiple of 2^k in the middle half
@@ -301,8 +300,8 @@ pub fn prove_over_set(
     let c = point(kind, centre, opts)?;
     let (mut ts_mv, mut e_mv) = (c.ts, c.e);
     for (s, d) in slopes.iter().zip(&du) {
-        ts_mv = ts_mv + s.ts * *d;
-        e_mv = e_mv + s.e * *d;
+        ts_mv += s.ts * *d;
+        e_mv += s.e * *d;
     }
     let ts = ts_h.intersection(ts_mv);
     let e = e_h.intersection(e_mv);
