@@ -345,4 +345,28 @@ mod tests {
             assert!(got.contains(want) && got.wid() < 1e-12, "{got:?} ∌ {want}");
         }
     }
+
+    /// A power whose exponent has a derivative (n or p given as a range): ∂/∂q |x|^q =
+    /// |x|^q ln|x|, ∂/∂q |x|^(q−1)x = |x|^(q−1)x ln|x|, ∂/∂y a^y = a^y ln a, against the closed
+    /// forms; and the base derivative stays q|x|^(q−1)(sign x).
+    #[test]
+    fn derivatives_in_the_exponent() {
+        for x in [-2.0_f64, -0.3, 0.4, 3.0] {
+            let q = Dual::<f64, 2>::variable(1.7, 1);
+            let d = Dual::<f64, 2>::variable(x, 0);
+            let a = Real::apow(&d, &q);
+            let s = Real::spow(&d, &q);
+            let l = x.abs().ln();
+            let close = |got: f64, want: f64| (got - want).abs() <= 1e-13 * (1.0 + want.abs());
+            assert!(close(a.d[1], x.abs().powf(1.7) * l), "{x}: {:?}", a.d);
+            assert!(close(s.d[1], x.abs().powf(0.7) * x * l), "{x}: {:?}", s.d);
+            assert!(close(a.d[0], 1.7 * x.abs().powf(0.7) * x.signum()), "{x}");
+            assert!(close(s.d[0], 1.7 * x.abs().powf(0.7)), "{x}");
+            if x > 0.0 {
+                let p = Real::pow(&d, &q);
+                assert!(close(p.d[1], x.powf(1.7) * x.ln()), "{x}");
+                assert!(close(p.d[0], 1.7 * x.powf(0.7)), "{x}");
+            }
+        }
+    }
 }

@@ -530,4 +530,76 @@ mod tests {
         assert_eq!(iv(-inf, 1.0).div_int(-4), iv(-0.25, inf));
         assert_eq!(iv(1.0, inf).mul_int(-4), iv(-inf, -4.0));
     }
+
+    /// pow_ln (∂/∂q of the powers, for exponents given as ranges) and |x|^q with q reaching 0
+    /// contain y^q·ln y and y^q at sample points, computed with MPFR (256 bits) and compared
+    /// exactly with the bounds; boxes reaching 0 (the bounded forms) and away from it.
+    #[test]
+    fn power_log_and_zero_exponent_bounds_contain_mpfr_samples() {
+        use rug::Float;
+        use rug::ops::Pow;
+        let inside = |x: &Float, e: Interval| *x >= e.inf() && *x <= e.sup();
+        let exact = |y: f64, q: f64, log: bool| -> Float {
+            let yf = Float::with_val(256, y.abs());
+            if y == 0.0 {
+                // the limits: y^q ln y → 0 (q ≥ 1); 0^q = 0 (q > 0), 1 at q = 0
+                return Float::with_val(256, if !log && q == 0.0 { 1.0 } else { 0.0 });
+            }
+            let p = yf.clone().pow(Float::with_val(256, q));
+            if log { p * yf.ln() } else { p }
+        };
+        let boxes = [
+            (0.0, 0.0),
+            (-1e-8, 1e-300),
+            (-0.2, 0.3),
+            (-0.5, 0.1),
+            (0.0, 0.9),
+            (-2.5, 1.0),
+            (0.4, 3.0),
+            (-3.0, -0.05),
+        ];
+        for (qa, qb) in [(1.0, 1.0), (1.0, 1.001), (1.27, 1.31), (2.0, 3.5)] {
+            let q = Interval::try_from((qa, qb)).unwrap();
+            for (a, b) in boxes {
+                let w = Interval::try_from((a, b)).unwrap();
+                let (u, s) = (
+                    <Interval as Real>::pow_ln(&w, &q, false),
+                    <Interval as Real>::pow_ln(&w, &q, true),
+                );
+                for i in 0..=40 {
+                    let y = a + (b - a) * i as f64 / 40.0;
+                    for qq in [qa, (qa + qb) / 2.0, qb] {
+                        let g = exact(y, qq, true);
+                        let sg = if y < 0.0 { -g.clone() } else { g.clone() };
+                        assert!(inside(&g, u), "|w|^q ln|w|: y {y}, q {qq}: {g} ∉ {u:?}");
+                        assert!(inside(&sg, s), "signed: y {y}, q {qq}: {sg} ∉ {s:?}");
+                    }
+                }
+            }
+        }
+        // |x|^q for q ∈ [0, 0.001] (|z|^(n−1) with n ∈ [1, 1.001]) over boxes reaching 0
+        let q = Interval::try_from((0.0, 0.001)).unwrap();
+        for (a, b) in [
+            (0.0, 0.0),
+            (-1e-8, 1e-300),
+            (-0.2, 0.3),
+            (-2.5, 1.0),
+            (0.0, 4.0),
+        ] {
+            let w = Interval::try_from((a, b)).unwrap();
+            let r = w.apow(&q);
+            for i in 0..=40 {
+                let y = a + (b - a) * i as f64 / 40.0;
+                for qq in [0.0, 0.0005, 0.001] {
+                    let g = exact(y, qq, false);
+                    assert!(inside(&g, r), "|y|^q: y {y}, q {qq}: {g} ∉ {r:?}");
+                }
+            }
+        }
+        // and sgn: ±1 off 0, the Clarke derivative [−1, 1] of |x| across it
+        let sg = |a: f64, b: f64| Interval::try_from((a, b)).unwrap().sgn();
+        assert_eq!(sg(0.5, 2.0), Interval::from_int(1));
+        assert_eq!(sg(-2.0, -0.5), Interval::from_int(-1));
+        assert_eq!(sg(-1.0, 1.0), Interval::try_from((-1.0, 1.0)).unwrap());
+    }
 }
