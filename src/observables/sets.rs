@@ -439,6 +439,47 @@ fn point(
     })
 }
 
+/// The parameter components of a system with D = N + slots + …: slot k holds input
+/// `ranges[k]` (unused slots 0), as `record_with`'s declaration and in x(0) (the rest of x(0)
+/// is 0 until [`model_start`] fills the model's state).
+fn parameter_slots<const N: usize, const D: usize>(
+    vals: &[Interval],
+    ranges: &[usize],
+    slots: usize,
+) -> ([Option<Interval>; D], [Interval; D]) {
+    let zero = Interval::try_from((0.0, 0.0)).unwrap();
+    let mut params: [Option<Interval>; D] = [None; D];
+    let mut x0 = [zero; D];
+    for slot in 0..slots {
+        let v = ranges.get(slot).map_or(zero, |&j| vals[j]);
+        params[N + slot] = Some(v);
+        x0[N + slot] = v;
+    }
+    (params, x0)
+}
+
+/// Writes the model's initial state (it does not depend on the parameters) into x(0).
+fn model_start<R: Real, M: CollisionModel<R, N>, const N: usize, const D: usize>(
+    build: impl Fn(NdParams<R>) -> M,
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    lift: impl Fn(Interval) -> R,
+    value: impl Fn(&R) -> Interval,
+    x0: &mut [Interval; D],
+) -> Result<(), RigorError> {
+    let vals = inputs.values();
+    let m0 = build(
+        inputs
+            .with_values(vals.iter().map(|&x| lift(x)).collect())
+            .nd(kind)
+            .map_err(param_error)?,
+    );
+    for (i, s) in m0.initial_state().iter().enumerate() {
+        x0[i] = value(s);
+    }
+    Ok(())
+}
+
 type V1 = Dual<Rec<Interval>, 1>;
 
 /// The system (x, u, S) of the module doc: the K ranged inputs `js` as parameter components
@@ -460,14 +501,7 @@ where
     assert_eq!(D, N + KP + N);
     assert!(js.len() <= KP && d < js.len());
     let vals = inputs.values();
-    let zero = Interval::try_from((0.0, 0.0)).unwrap();
-    let mut params: [Option<Interval>; D] = [None; D];
-    let mut x0 = [zero; D];
-    for slot in 0..KP {
-        let v = js.get(slot).map_or(zero, |&j| vals[j]);
-        params[N + slot] = Some(v);
-        x0[N + slot] = v;
-    }
+    let (params, mut x0) = parameter_slots::<N, D>(&vals, js, KP);
     let tape = Tape::<Interval, D>::record_with(params, |v| {
         let dv: Vec<V1> = (0..vals.len())
             .map(|i| match js.iter().position(|&j| j == i) {
@@ -499,20 +533,15 @@ where
         o.extend([force.v, vel.v, force.d[0].clone(), vel.d[0].clone()]);
         o
     });
-    // x(0) from the model (it does not depend on the parameters), u(0) = U, S(0) = 0
-    let m0 = build(
-        inputs
-            .with_values(
-                vals.iter()
-                    .map(|&x| V1::constant(Rec::constant(x)))
-                    .collect(),
-            )
-            .nd(kind)
-            .map_err(param_error)?,
-    );
-    for (i, s) in m0.initial_state().iter().enumerate() {
-        x0[i] = *s.v.value();
-    }
+    // x(0) from the model, u(0) = U, S(0) = 0
+    model_start(
+        &build,
+        kind,
+        inputs,
+        |x| V1::constant(Rec::constant(x)),
+        |s| *s.v.value(),
+        &mut x0,
+    )?;
     let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
     // the derivatives over the event's state enclosure, each tightened by its time-centred
     // form q(T_s) ∈ q(Φ(T_m)) + q′(Φ([T_s]))·([T_s] − T_m), T_m the middle of [T_s] (the box of
@@ -589,13 +618,7 @@ where
     assert_eq!(D, N + MAX_UNCERTAIN);
     let vals = inputs.values();
     let zero = Interval::try_from((0.0, 0.0)).unwrap();
-    let mut params: [Option<Interval>; D] = [None; D];
-    let mut x0 = [zero; D];
-    for slot in 0..MAX_UNCERTAIN {
-        let v = ranges.get(slot).map_or(zero, |&i| vals[i]);
-        params[N + slot] = Some(v);
-        x0[N + slot] = v;
-    }
+    let (params, mut x0) = parameter_slots::<N, D>(&vals, ranges, MAX_UNCERTAIN);
     let tape = Tape::<Interval, D>::record_with(params, |v| {
         let rv: Vec<Rec<Interval>> = (0..vals.len())
             .map(|i| match ranges.iter().position(|&r| r == i) {
@@ -614,15 +637,7 @@ where
         o.extend([m.force(&xs), m.velocity(&xs)]);
         o
     });
-    let m0 = build(
-        inputs
-            .with_values(vals.iter().map(|&x| Rec::constant(x)).collect())
-            .nd(kind)
-            .map_err(param_error)?,
-    );
-    for (i, s) in m0.initial_state().iter().enumerate() {
-        x0[i] = *s.value();
-    }
+    model_start(&build, kind, inputs, Rec::constant, |s| *s.value(), &mut x0)?;
     let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
     Ok(SetEnclosure {
         ts: ev.ts,
