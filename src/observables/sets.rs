@@ -595,6 +595,28 @@ where
             None
         }
     });
+    if std::env::var_os("BWCL_TRACE_SETS").is_some() {
+        let w = |x: &[Interval]| {
+            let v: Vec<String> = x.iter().map(|v| format!("{:.2e}", v.wid())).collect();
+            v.join(" ")
+        };
+        eprintln!(
+            "input {}: T_s width {:.2e}, state widths at T_s [{}], at the middle of T_s [{}]",
+            js[d],
+            ev.ts.wid(),
+            w(&ev.state),
+            at_m.as_ref().map(|s| w(s)).unwrap_or_default()
+        );
+        if let Some(s) = &slope {
+            eprintln!(
+                "  dT_s/du {:?} width {:.2e}; de/du {:?} width {:.2e}",
+                s.ts.mid(),
+                s.ts.wid(),
+                s.e.mid(),
+                s.e.wid()
+            );
+        }
+    }
     let slope = slope.ok_or_else(|| RigorError {
         reason: "the crossing at T_s is not transversal over the whole range (no derivative)"
             .into(),

@@ -83,6 +83,18 @@ impl<const N: usize> Parallelepiped<N> {
         });
         Some(Self { c, a: q, r: r1 })
     }
+
+    /// The set {p + d : p ∈ c + A·r, d ∈ D}, re-represented (z + A·r with z = c + D): a
+    /// low-order step across a switching surface moves every point by τ·f(Y) for some f in the
+    /// box f(Y), so the parallelepiped survives it with the small box τ·f(Y) added, instead of
+    /// being re-wrapped as a box (which loses the correlations of a wide set, e.g. with a
+    /// parameter range as components).
+    pub fn shifted(&self, d: &[Interval; N]) -> Option<Self> {
+        let z: [Interval; N] = std::array::from_fn(|i| pt(self.c[i]) + d[i]);
+        let b: [[Interval; N]; N] =
+            std::array::from_fn(|i| std::array::from_fn(|j| pt(self.a[i][j])));
+        Self::advance(&z, &b, &self.r)
+    }
 }
 
 /// Q of a QR factorization of m with its columns sorted by ‖m e_j‖·rad(r_j), by modified
@@ -199,5 +211,58 @@ mod tests {
         let hp = p.hull();
         assert!(hp[0].wid() < 2.1e-3 && hp[1].wid() < 2.1e-3, "{hp:?}");
         assert!(bx[0].wid() > 1e-2, "the plain box wraps: {bx:?}");
+    }
+
+    #[test]
+    fn a_shifted_parallelepiped_holds_every_moved_point() {
+        // a long thin set along (1, 1)/√2, moved by the box D = [1, 1.5] × [−0.25, 0]: every
+        // corner p + d must be inside, and the result stays thin across (1, 1) (a box would not)
+        let (s, c) = (
+            std::f64::consts::FRAC_1_SQRT_2,
+            std::f64::consts::FRAC_1_SQRT_2,
+        );
+        let p = Parallelepiped {
+            c: [0.5, -0.25],
+            a: [[c, -s], [s, c]],
+            r: [
+                Interval::try_from((-1.0, 1.0)).unwrap(),
+                Interval::try_from((-1e-9, 1e-9)).unwrap(),
+            ],
+        };
+        let d = [
+            Interval::try_from((1.0, 1.5)).unwrap(),
+            Interval::try_from((-0.25, 0.0)).unwrap(),
+        ];
+        let q = p.shifted(&d).unwrap();
+        let inside = |x: [f64; 2]| {
+            // x ∈ c′ + A′·r′ ⟺ A′⁻¹(x − c′) ∈ r′ (A′⁻¹ enclosed)
+            let qi = inverse_enclosure(&q.a).unwrap();
+            (0..2).all(|i| {
+                let mut acc = ZERO;
+                for j in 0..2 {
+                    acc += qi[i][j] * (pt(x[j]) - pt(q.c[j]));
+                }
+                !acc.intersection(q.r[i]).is_empty()
+            })
+        };
+        for r0 in [-1.0, 1.0] {
+            for r1 in [-1e-9, 1e-9] {
+                for d0 in [1.0, 1.5] {
+                    for d1 in [-0.25, 0.0] {
+                        let x = [p.c[0] + c * r0 - s * r1 + d0, p.c[1] + s * r0 + c * r1 + d1];
+                        assert!(inside(x), "corner {x:?} outside {q:?}");
+                    }
+                }
+            }
+        }
+        // thin across the long edge: the width of D's projection, not the hull's
+        let across = q.r.iter().map(|r| r.wid()).fold(f64::INFINITY, f64::min);
+        assert!(across < 0.6, "{q:?}");
+        let h = q.hull();
+        // the first coordinate's true range is 0.5 ± 1/√2 + [1, 1.5]
+        assert!(
+            h[0].contains(0.5 - c + 1.0) && h[0].contains(0.5 + c + 1.5),
+            "{h:?}"
+        );
     }
 }
