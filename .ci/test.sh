@@ -4,8 +4,12 @@
 # non-zero if it cannot prove its statement) and the re-check of the Table 1 certificate.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash .ci/setup.sh
-cargo test --release
-cargo run --release --quiet --bin proof-lyapunov
-cargo run --release --quiet --bin proof-equilibria
-cargo run --release --quiet --bin proof-certificate -- check
+FLAGS=$(bash .ci/setup.sh)
+# shellcheck disable=SC2086 # FLAGS is empty or one flag
+cargo test --release $FLAGS
+# shellcheck disable=SC2086
+cargo run --release --quiet $FLAGS --bin proof-lyapunov
+# shellcheck disable=SC2086
+cargo run --release --quiet $FLAGS --bin proof-equilibria
+# shellcheck disable=SC2086
+cargo run --release --quiet $FLAGS --bin proof-certificate -- check

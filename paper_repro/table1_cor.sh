@@ -4,8 +4,9 @@
 # proved enclosures by the rigorous interval Taylor engine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash .ci/setup.sh
-cargo build --release --quiet
+FLAGS=$(bash .ci/setup.sh)
+# shellcheck disable=SC2086 # FLAGS is empty or one flag
+cargo build --release --quiet $FLAGS
 BWCL=target/release/bwcl
 V0="0.1,0.5,1,2,3,4,5"
 run() { # model name base
