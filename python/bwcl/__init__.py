@@ -393,7 +393,8 @@ class FitResult(CostResult):
 class FitProgress(NamedTuple):
     """What the ``progress`` callback of :func:`fit` receives after every Nelder–Mead
     iteration: iterations done of ``total`` (a start that stops early counts its unused
-    budget as done), starts finished of ``starts``, and J of the last finished start."""
+    budget as done), starts finished of ``starts``, and J of the last finished start (NaN
+    before the first)."""
 
     done: int
     total: int
@@ -718,9 +719,9 @@ def _text_progress() -> Callable[[FitProgress], None]:
     except ImportError:
         def line(p: FitProgress) -> None:
             end = "\n" if p.starts_done == p.starts else ""
+            last = "" if p.last_J != p.last_J else f", last J = {p.last_J:.4e}"
             sys.stderr.write(
-                f"\rfit {p.done}/{p.total} iterations, {p.starts_done}/{p.starts} starts, "
-                f"last J = {p.last_J:.4e}{end}"
+                f"\rfit {p.done}/{p.total} iterations, {p.starts_done}/{p.starts} starts{last}{end}"
             )
             sys.stderr.flush()
 

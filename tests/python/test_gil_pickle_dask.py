@@ -3,6 +3,7 @@ and the Dask example runs on a LocalCluster with two worker processes."""
 
 import importlib.util
 import pickle
+import sys
 import threading
 import time
 
@@ -43,25 +44,29 @@ def test_two_threads_overlap():
 
 
 def test_python_runs_during_a_call():
-    """A pure-Python thread keeps running while a call computes."""
-    counts = []
+    """A pure-Python thread keeps counting while a call computes (with the GIL held it could
+    count only until the interpreter's next switch, set here to 0.1 ms)."""
+    counter = [0]
     done = threading.Event()
 
     def spin():
-        n = 0
         while not done.is_set():
-            n += 1
-        counts.append(n)
+            counter[0] += 1
 
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1e-4)
     t = threading.Thread(target=spin)
-    t.start()
-    time.sleep(0.01)
-    before = time.perf_counter()
-    bwcl.cor("shc", base=DSS, v0=V, threads=1)
-    during = time.perf_counter() - before
-    done.set()
-    t.join()
-    assert during > 0.02 and counts[0] > 1000
+    try:
+        t.start()
+        time.sleep(0.01)
+        c0 = counter[0]
+        bwcl.cor("shc", base=DSS, v0=np.linspace(0.5, 2.0, 1000), threads=1)
+        c1 = counter[0]
+    finally:
+        done.set()
+        t.join()
+        sys.setswitchinterval(old)
+    assert c1 - c0 > 20000, (c0, c1)
 
 
 def test_results_and_functions_pickle():
