@@ -16,3 +16,10 @@ pub mod engines;
 pub mod fit;
 pub mod models;
 pub mod observables;
+
+// The Python bindings (feature "python"): they compile the CLI's sources, which name the
+// library `bwcl`.
+#[cfg(feature = "python")]
+extern crate self as bwcl;
+#[cfg(feature = "python")]
+mod python;

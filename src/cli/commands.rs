@@ -126,7 +126,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
 }
 
 /// The six parameters of a set for the JSON output (also used by `fit`).
-pub(super) fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
+pub(crate) fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
     ParamsOut {
         b: p.b,
         gamma: p.gamma,
@@ -149,7 +149,7 @@ fn params_interval(p: &NdParams<Interval>) -> ParamsOut<[f64; 2]> {
 }
 
 /// T_s and e of one case on the float engine.
-fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
+pub(crate) fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
     let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts)
         .map(|r| (r.ts, r.e, r.stats)));
     let t_c = c.scales.as_ref().map(|s| s.t_c);
@@ -182,7 +182,7 @@ fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
 }
 
 /// Enclosures of T_s and e of one case on the rigorous engine.
-fn rigorous_row(
+pub(crate) fn rigorous_row(
     kind: ModelKind,
     c: &Case<Interval>,
     opts: &TaylorOptions,
@@ -268,12 +268,7 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.params.model);
     let (points, t_end) = (a.points, a.t_end);
-    if a.physical_units && a.params.physical.is_none() {
-        return Err(CliError::Input(
-            "--physical-units needs --physical (the scales come from the physical parameters)"
-                .into(),
-        ));
-    }
+    check_units(a)?;
     let (head, rows, remark) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let case = input::single_case::<Interval>(&a.params)?;
@@ -298,6 +293,17 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
         note(&r);
     }
     Ok(EXIT_OK)
+}
+
+/// --physical-units needs the scales of --physical.
+pub(crate) fn check_units(a: &TrajectoryArgs) -> Result<(), CliError> {
+    if a.physical_units && a.params.physical.is_none() {
+        return Err(CliError::Input(
+            "--physical-units needs --physical (the scales come from the physical parameters)"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// Samples on the float engine's dense output.

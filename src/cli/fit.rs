@@ -78,8 +78,49 @@ fn base_text(p: &NdParams<f64>) -> String {
     p.as_array().map(num).join(",")
 }
 
-fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
+pub(crate) fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
     CorData::read(path).map_err(|e| CliError::Input(format!("--data {e}")))
+}
+
+/// The settings of `fit` from its arguments: --init parsed and checked against --starts and
+/// --p1 (the data are read separately).
+pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
+    let kind = ModelKind::from(a.model);
+    let mut initial = Vec::new();
+    if let Some(text) = &a.init {
+        initial.push(
+            NdParams::<f64>::parse(kind, text).map_err(|e| nd_error::<f64>("--init", text, e))?,
+        );
+    }
+    if a.starts == 0 && initial.is_empty() {
+        return Err(CliError::Input(
+            "--starts 0 needs --init (there would be nothing to start from)".into(),
+        ));
+    }
+    match (a.p1, kind, initial.first()) {
+        (true, _, Some(p)) if p.p != 1.0 => {
+            return Err(CliError::Input(format!(
+                "--init has p = {} but --p1 fixes p = 1",
+                num(p.p)
+            )));
+        }
+        (false, ModelKind::Maxwell, Some(p)) if p.p == 1.0 => {
+            return Err(CliError::Input(
+                "--init has the maxwell p = 1, an isolated point of 𝓟: add --p1".into(),
+            ));
+        }
+        _ => {}
+    }
+    let mut opts = FitOptions {
+        starts: a.starts,
+        seed: a.seed,
+        max_iter: a.max_iter,
+        p1: a.p1,
+        initial,
+        ..FitOptions::default()
+    };
+    opts.float.ode.max_steps = opts.float.ode.max_steps.min(FIT_MAX_STEPS);
+    Ok(opts)
 }
 
 /// Most DOP853 steps of one CoR inside `fit`: a well-posed case takes a few hundred to a few
@@ -175,41 +216,7 @@ fn progress_bar(len: u64) -> ProgressBar {
 pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
     let kind = ModelKind::from(a.model);
     let data = read_data(&a.data)?;
-    let mut initial = Vec::new();
-    if let Some(text) = &a.init {
-        initial.push(
-            NdParams::<f64>::parse(kind, text).map_err(|e| nd_error::<f64>("--init", text, e))?,
-        );
-    }
-    if a.starts == 0 && initial.is_empty() {
-        return Err(CliError::Input(
-            "--starts 0 needs --init (there would be nothing to start from)".into(),
-        ));
-    }
-    match (a.p1, kind, initial.first()) {
-        (true, _, Some(p)) if p.p != 1.0 => {
-            return Err(CliError::Input(format!(
-                "--init has p = {} but --p1 fixes p = 1",
-                num(p.p)
-            )));
-        }
-        (false, ModelKind::Maxwell, Some(p)) if p.p == 1.0 => {
-            return Err(CliError::Input(
-                "--init has the maxwell p = 1, an isolated point of 𝓟: add --p1".into(),
-            ));
-        }
-        _ => {}
-    }
-    let opts = FitOptions {
-        starts: a.starts,
-        seed: a.seed,
-        max_iter: a.max_iter,
-        p1: a.p1,
-        initial,
-        ..FitOptions::default()
-    };
-    let mut opts = opts;
-    opts.float.ode.max_steps = opts.float.ode.max_steps.min(FIT_MAX_STEPS);
+    let opts = fit_options(a)?;
     let n_starts = (opts.starts + opts.initial.len()) as u64;
     let budget = opts.max_iter * (1 + opts.restarts as u64);
     let bar = progress_bar(n_starts * budget);

@@ -1,12 +1,14 @@
 //! The `bwcl` program: argument parsing, the subcommands, and the mapping of errors to one
 //! stderr line and an exit code (0 success, 1 not proved / integration failure, 2 bad input).
 
-mod args;
+// pub(crate): the Python bindings (src/python/, feature "python") compile this module into the
+// library and reuse its parsers, checks and rows
+pub(crate) mod args;
 mod band;
-mod commands;
-mod fit;
-mod input;
-mod output;
+pub(crate) mod commands;
+pub(crate) mod fit;
+pub(crate) mod input;
+pub(crate) mod output;
 
 use bwcl::fit::data::echo;
 use clap::Parser;
@@ -60,11 +62,15 @@ pub fn run() -> i32 {
 
 /// Prints the one error line.
 fn report(message: &str) {
+    note(&format!("bwcl: error: {}", error_line(message)));
+}
+
+/// A message as the one line [`report`] prints after "bwcl: error: ".
+pub(crate) fn error_line(message: &str) -> String {
     // a message is one line by construction, its user values escaped; fold any stray
     // whitespace and escape any stray control character to keep it so
     let line: Vec<&str> = message.split_whitespace().collect();
-    let line: String = line
-        .join(" ")
+    line.join(" ")
         .chars()
         .map(|c| {
             if c.is_control() {
@@ -73,8 +79,7 @@ fn report(message: &str) {
                 c.to_string()
             }
         })
-        .collect();
-    note(&format!("bwcl: error: {line}"));
+        .collect()
 }
 
 /// Writes a line to stderr; a closed or full stderr is ignored (`eprintln!` would panic, and
@@ -101,10 +106,15 @@ fn clap_error(e: clap::Error) -> i32 {
             e.exit_code()
         }
         _ => {
-            report(&one_line(&escape_values(&e)));
+            report(&usage_message(&e));
             EXIT_BAD_INPUT
         }
     }
+}
+
+/// A usage error of clap (an unknown option, a value out of its range) as the CLI reports it.
+pub(crate) fn usage_message(e: &clap::Error) -> String {
+    one_line(&escape_values(e))
 }
 
 /// Which argument is not UTF-8 (clap does not say): the first such, after the option it

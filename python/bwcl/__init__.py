@@ -1,0 +1,787 @@
+"""bwcl — verified numerics for the Bouc–Wen collision laws, from Python.
+
+The models of Milehins & Marghitu, *The Bouc–Wen Model for Binary Direct Collinear
+Collisions of Convex Viscoplastic Bodies*: the NDBWSHCCM (``model="shc"``, eq:BWSHCCM_nd,
+Kelvin–Voigt type, states X, Z, V) and the NDBWMCM (``model="maxwell"``, eq:BWMCM_nd, states
+R, Y, Z, W). For a collision starting at X = Z = 0, V = −1 the package computes
+
+    T_s = inf{T ≥ 0 : F_P(Φ(T)) ≤ 0 and V(T) ≥ 0}    (eq:main_t_s)
+    e   = V(T_s)                                      (eq:main_cor)
+
+- :func:`cor` — T_s and e on the f64 DOP853 engine at the paper's SciPy settings
+  (``rtol=1e-10, atol=1e-12, max_step=1e-2``), one case per impact speed v0, the cases in
+  parallel;
+- :func:`cor_rigorous` — proved enclosures of T_s and e (interval Taylor engine): the true
+  values lie inside, rounding and truncation included;
+- :func:`trajectory`, :func:`loop` — the trajectory up to T_s and the hysteresis loop
+  (F_P against X, eq:BWHCL), nondimensional or in SI units;
+- :func:`cost`, :func:`fit` — the cost J (eq:J) of a base set P* on measured CoR data and
+  its minimization over 𝓟 (seeded multi-start Nelder–Mead).
+
+Parameters come as in the CLI (``bwcl --help``): exactly one of
+
+- ``nd``: a nondimensional set P = (B, Γ, κ, σ, n, p) — one case, no ``v0``;
+- ``base``: a base set P* = (B_b, Γ_b, κ, σ_b, n, p), mapped to each ``v0`` by the
+  base-parameter map 𝓟(P*, v0) (sec:KVCL, sec:MCL);
+- ``physical``: SI parameters ``{"m": …, "k": …, "c": …, "n": …, "p": …, "alpha": …,
+  "beta": …, "gamma": …, "A": …}`` (eq:BWSHCCM, eq:BWMCM), with ``v0`` in m/s.
+
+A set is a sequence of six values or the CLI's text ``"1.43,-1.42,0.632,0.00715,1.31,1.27"``.
+Each value may be a number, a decimal string (read as written: with :func:`cor_rigorous`
+``"0.632"`` is enclosed exactly, it is not rounded to a double) or, for :func:`cor_rigorous`,
+a range ``(lo, hi)``. Bad input raises :class:`ValueError` with the CLI's one-line message
+(a wrong type raises :class:`TypeError`). Every call releases the GIL; ``threads`` sets the
+size of the call's own thread pool (default: all cores). Results are plain dataclasses of
+NumPy arrays: they pickle, and so do the functions (for Dask, see ``examples/dask_sweep.py``).
+"""
+
+from __future__ import annotations
+
+import numbers
+import os
+import sys
+from dataclasses import dataclass, field
+from typing import Any, Callable, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _bwcl
+
+__version__ = _bwcl.__version__
+
+__all__ = [
+    "cor",
+    "cor_rigorous",
+    "trajectory",
+    "loop",
+    "cost",
+    "fit",
+    "CorResult",
+    "RigorousResult",
+    "TrajectoryResult",
+    "LoopResult",
+    "CostResult",
+    "FitResult",
+    "FitStart",
+    "FitProgress",
+    "NotProvedError",
+    "TABLE1",
+]
+
+#: The paper's Table 1 (tab:param): the base sets P* = (B_b, Γ_b, κ, σ_b, n, p) identified from
+#: the DSS and DSA data, as (model, text exactly as printed).
+TABLE1 = {
+    "SHC DSS": ("shc", "1.43,-1.42,0.632,0.00715,1.31,1.27"),
+    "SHC DSA": ("shc", "0.63,-0.611,0.188,0.00594,1,2.02"),
+    "Maxwell DSS": ("maxwell", "0.655,-0.64,0.519,0.0118,1.94,2.28"),
+    "Maxwell DSA": ("maxwell", "0.44,-0.418,0.113,0.00785,1.27,3.14"),
+}
+
+_MAX_THREADS = 1024
+
+
+class NotProvedError(RuntimeError):
+    """Raised by :func:`cor_rigorous` with ``raise_on_failure=True`` when a case was not
+    proved. ``result`` holds every case (the proved ones too) and ``reason`` the first
+    reason."""
+
+    def __init__(self, message: str, result: Optional["RigorousResult"] = None):
+        super().__init__(message)
+        self.result = result
+
+    def __reduce__(self):
+        return (NotProvedError, (str(self), self.result))
+
+
+# ---------------------------------------------------------------------------------------------
+# arguments → the CLI's arguments
+
+
+def _token(x: Any, what: str, ranges: bool) -> str:
+    """One value as the CLI reads it: a string as written, an integer in full, a float as its
+    shortest decimal (``repr``), a pair (lo, hi) as the range ``lo..hi``."""
+    if isinstance(x, str):
+        return x
+    if isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"{what}: expected a number, got the bool {x!r}")
+    if isinstance(x, numbers.Integral):
+        return str(int(x))
+    if isinstance(x, numbers.Real):
+        return repr(float(x))
+    if ranges and isinstance(x, tuple) and len(x) == 2:
+        return f"{_token(x[0], what, False)}..{_token(x[1], what, False)}"
+    kind = "a number, a decimal string or a (lo, hi) pair" if ranges else "a number"
+    raise TypeError(f"{what}: expected {kind}, got {type(x).__name__} {x!r:.40}")
+
+
+def _six(p: Any, what: str, ranges: bool) -> str:
+    """A parameter set (six values, or the CLI's comma-separated text)."""
+    if isinstance(p, str):
+        return p
+    if isinstance(p, np.ndarray):
+        if p.ndim != 1:
+            raise ValueError(
+                f"{what} must be six values B,Γ,κ,σ,n,p, got an array of shape {p.shape}"
+            )
+        p = p.tolist()
+    if isinstance(p, dict) or not isinstance(p, Sequence):
+        raise TypeError(
+            f"{what}: expected six values B,Γ,κ,σ,n,p (a sequence or a comma-separated "
+            f"string), got {type(p).__name__}"
+        )
+    return ",".join(_token(x, what, ranges) for x in p)
+
+
+def _physical(p: Any, ranges: bool) -> str:
+    if isinstance(p, str):
+        return p
+    if not hasattr(p, "items"):
+        raise TypeError(
+            "physical: expected a mapping {'m': …, 'k': …, …} or the CLI's text "
+            f"'m=…,k=…,…', got {type(p).__name__}"
+        )
+    return ",".join(f"{k}={_token(v, 'physical', ranges)}" for k, v in p.items())
+
+
+def _source(model: Any, base: Any, nd: Any, physical: Any, ranges: bool) -> list:
+    if not isinstance(model, str):
+        raise TypeError(f"model: expected 'shc' or 'maxwell', got {type(model).__name__}")
+    argv = [f"--model={model}"]
+    if base is not None:
+        argv.append("--base=" + _six(base, "base", ranges))
+    if nd is not None:
+        argv.append("--nd=" + _six(nd, "nd", ranges))
+    if physical is not None:
+        argv.append("--physical=" + _physical(physical, ranges))
+    return argv
+
+
+def _num(x: Any, what: str) -> str:
+    return _token(x, what, False)
+
+
+def _speeds_array(v0: Any) -> Optional[np.ndarray]:
+    """v0 as a 1-D float64 array when it is numeric, else None."""
+    if isinstance(v0, str):
+        return None
+    if isinstance(v0, (list, tuple)) and any(isinstance(x, (str, tuple)) for x in v0):
+        return None
+    arr = np.asarray(v0)
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim != 1:
+        raise ValueError(f"v0 must be a number or a 1-D array of impact speeds, got shape {arr.shape}")
+    if arr.dtype.kind == "b":
+        raise TypeError("v0: expected impact speeds, got an array of bools")
+    if arr.dtype.kind == "f":
+        return np.ascontiguousarray(arr, dtype=np.float64)
+    return None  # integers go as tokens, written as given (messages echo them so)
+
+
+def _speed_tokens(v0: Any, ranges: bool) -> list:
+    """v0 as the CLI's tokens: a string is the CLI's list; else one token per item."""
+    if isinstance(v0, str):
+        return v0.split(",")
+    items = v0.tolist() if isinstance(v0, np.ndarray) else v0
+    if isinstance(items, (numbers.Real, str)):
+        items = [items]
+    if not isinstance(items, Sequence):
+        raise TypeError(f"v0: expected impact speeds, got {type(v0).__name__}")
+    out = []
+    for x in items:
+        t = _token(x, "v0", ranges)
+        if isinstance(x, str) and "," in x:
+            raise ValueError(f"v0: the item '{x:.40}' holds a comma: give one speed per item")
+        out.append(t)
+    return out
+
+
+def _threads(threads: Any) -> Optional[int]:
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or not (
+        1 <= int(threads) <= _MAX_THREADS
+    ):
+        raise ValueError(f"threads = {threads!r:.40} must be a whole number in 1..={_MAX_THREADS}")
+    return int(threads)
+
+
+def _float_engine(rtol: Any, atol: Any, max_step: Any, horizon: Any) -> list:
+    argv = [f"--horizon={_num(horizon, 'horizon')}"]
+    for name, x in (("rtol", rtol), ("atol", atol), ("max-step", max_step)):
+        if x is not None:
+            argv.append(f"--{name}={_num(x, name.replace('-', '_'))}")
+    return argv
+
+
+# ---------------------------------------------------------------------------------------------
+# results
+
+
+@dataclass(frozen=True, eq=False)
+class CorResult:
+    """T_s and e of every case of :func:`cor`, one entry per impact speed (in order).
+
+    Attributes
+    ----------
+    model : "shc" or "maxwell".
+    v0 : impact speeds [m/s] (NaN for ``nd``).
+    ts : T_s (eq:main_t_s), nondimensional (T = t/T_c); NaN without separation before the
+        horizon, or where the integration failed.
+    e : the CoR e = V(T_s) (eq:main_cor); 0 without separation, NaN where it failed.
+    separated : whether F_P ≤ 0 and V ≥ 0 was reached before the horizon.
+    nfev : right-hand-side evaluations; ``steps``: accepted DOP853 steps.
+    params : (n, 6) the nondimensional set P = (B, Γ, κ, σ, n, p) of each case.
+    error : per case, None or why the case could not be integrated.
+    ts_seconds, t_c : with ``physical``: T_s·T_c and the time scale T_c [s].
+    seconds : wall time of the computation (the cases only, as the CLI's ``--timing``).
+    """
+
+    model: str
+    v0: np.ndarray
+    ts: np.ndarray
+    e: np.ndarray
+    separated: np.ndarray
+    nfev: np.ndarray
+    steps: np.ndarray
+    params: np.ndarray
+    error: Tuple[Optional[str], ...]
+    ts_seconds: Optional[np.ndarray] = None
+    t_c: Optional[np.ndarray] = None
+    horizon: float = 100.0
+    seconds: float = 0.0
+    threads: int = 0
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Per case: integrated (separated or not)."""
+        return np.array([m is None for m in self.error], dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self.e)
+
+
+@dataclass(frozen=True, eq=False)
+class RigorousResult:
+    """Proved enclosures of :func:`cor_rigorous`, one entry per case (in order).
+
+    For a proved case the true T_s lies in ``ts[i] = (lo, hi)`` and the true e in ``e[i]``
+    for every input in the enclosures of the inputs (a decimal string is enclosed as written,
+    a range ``(lo, hi)`` whole). The float bounds are the engine's doubles; the ``*_text``
+    bounds are the decimals the CLI prints: the shortest decimal on the outer side that reads
+    back to the same double (lower bounds rounded down, upper bounds and widths up).
+
+    Attributes
+    ----------
+    status : per case "proved" or "not proved"; ``proved`` the same as booleans.
+    reason : per case None, or why it was not proved (the engine's words).
+    v0 : (n, 2) the enclosure of each impact speed (NaN for ``nd``).
+    ts, e : (n, 2) the enclosures of T_s (nondimensional) and e (NaN where not proved).
+    width_ts, width_e : upper bounds of the widths.
+    ts_text, e_text, v0_text : per case (lo, hi) decimals rounded outward, or None.
+    width_ts_text, width_e_text : the widths as decimals rounded up, or None.
+    ts_seconds : with ``physical``: (n, 2) an enclosure of T_s·T_c [s].
+    params : (n, 6, 2) the enclosures of P = (B, Γ, κ, σ, n, p) of each case.
+    """
+
+    model: str
+    status: Tuple[str, ...]
+    proved: np.ndarray
+    separated: np.ndarray
+    reason: Tuple[Optional[str], ...]
+    v0: np.ndarray
+    ts: np.ndarray
+    e: np.ndarray
+    width_ts: np.ndarray
+    width_e: np.ndarray
+    v0_text: Tuple[Optional[Tuple[str, str]], ...]
+    ts_text: Tuple[Optional[Tuple[str, str]], ...]
+    e_text: Tuple[Optional[Tuple[str, str]], ...]
+    width_ts_text: Tuple[Optional[str], ...]
+    width_e_text: Tuple[Optional[str], ...]
+    params: np.ndarray
+    ts_seconds: Optional[np.ndarray] = None
+    horizon: float = 100.0
+    order: int = 16
+    seconds: float = 0.0
+    threads: int = 0
+
+    def __len__(self) -> int:
+        return len(self.proved)
+
+
+@dataclass(frozen=True, eq=False)
+class TrajectoryResult:
+    """Samples of the trajectory at uniform times, the last at T_s (or ``t_end``).
+
+    Float engine: ``t`` (n,), ``states`` (n, N) with columns ``state_names`` (X, Z, V or
+    R, Y, Z, W; always nondimensional), ``x``, ``v``, ``F`` (the contact force F_P) (n,); in
+    ``units="physical"`` t [s], x [m], v [m/s], F [N]. Proved (``rigorous=True``): the same
+    as enclosures, ``states`` (n, N, 2) and ``x``, ``v``, ``F`` (n, 2) as (lo, hi).
+    """
+
+    model: str
+    t: np.ndarray
+    states: np.ndarray
+    state_names: Tuple[str, ...]
+    x: np.ndarray
+    v: np.ndarray
+    F: np.ndarray
+    units: str
+    rigorous: bool
+    note: Optional[str] = None
+
+
+@dataclass(frozen=True, eq=False)
+class LoopResult:
+    """The hysteresis loop F against x up to T_s, as the CLI's ``loop``: nondimensional
+    (x = X, F = F_P), or with ``physical_units=True`` x = |x| in millimetres and F in newtons
+    (the paper's Fig. 4). Proved: (n, 2) enclosures."""
+
+    model: str
+    x: np.ndarray
+    F: np.ndarray
+    units: str
+    rigorous: bool
+    note: Optional[str] = None
+
+
+@dataclass(frozen=True, eq=False)
+class CostResult:
+    """J(ṽ0, ẽ, P*) = sqrt(Σ (ẽ_i − e(𝓟(P*, ṽ0_i)))²) (eq:J) and the curve.
+
+    ``e_model`` is NaN where the model could not be evaluated (listed in ``errors`` as
+    (v0, reason)); such a speed counts with residual 1, and J is then an upper bound.
+    ``rms`` = J/√M."""
+
+    model: str
+    base: Tuple[float, ...]
+    J: float
+    m: int
+    rms: float
+    v0: np.ndarray
+    e_data: np.ndarray
+    e_model: np.ndarray
+    errors: Tuple[Tuple[float, str], ...]
+
+
+@dataclass(frozen=True, eq=False)
+class FitStart:
+    """One start of :func:`fit`: where it began, the best P* it found and J there."""
+
+    start: int
+    J: float
+    base: Tuple[float, ...]
+    initial: Tuple[float, ...]
+    iterations: int
+    evaluations: int
+    converged: bool
+
+
+@dataclass(frozen=True, eq=False)
+class FitResult(CostResult):
+    """The best base set ``base`` = P* = (B_b, Γ_b, κ, σ_b, n, p) of :func:`fit`, J (eq:J)
+    there with its curve (as :class:`CostResult`), and every start."""
+
+    p1: bool = False
+    seed: int = 1
+    evaluations: int = 0
+    seconds: float = 0.0
+    starts: Tuple[FitStart, ...] = field(default_factory=tuple)
+
+
+class FitProgress(NamedTuple):
+    """What the ``progress`` callback of :func:`fit` receives after every Nelder–Mead
+    iteration: iterations done of ``total`` (a start that stops early counts its unused
+    budget as done), starts finished of ``starts``, and J of the last finished start (NaN
+    before the first)."""
+
+    done: int
+    total: int
+    starts_done: int
+    starts: int
+    last_J: float
+
+
+# ---------------------------------------------------------------------------------------------
+# the functions
+
+
+def cor(
+    model: str,
+    *,
+    base: Any = None,
+    nd: Any = None,
+    physical: Any = None,
+    v0: Any = None,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_step: float = 1e-2,
+    horizon: float = 100.0,
+    threads: Optional[int] = None,
+) -> CorResult:
+    """T_s (eq:main_t_s) and the coefficient of restitution e = V(T_s) (eq:main_cor) on the
+    f64 DOP853 engine, one case per impact speed.
+
+    Parameters
+    ----------
+    model : "shc" (NDBWSHCCM, eq:BWSHCCM_nd) or "maxwell" (NDBWMCM, eq:BWMCM_nd).
+    base : P* = (B_b, Γ_b, κ, σ_b, n, p), mapped to each v0 by 𝓟(P*, v0).
+    nd : P = (B, Γ, κ, σ, n, p), one case (no v0).
+    physical : SI parameters {m, k, c, n, p, alpha, beta, gamma, A} (eq:BWSHCCM, eq:BWMCM).
+    v0 : impact speed(s) v0 > 0 [m/s]: a number, a 1-D array, or the CLI's list "0.5,1,2".
+    rtol, atol, max_step : DOP853 settings, the paper's by default (its SciPy call).
+    horizon : nondimensional time after which "no separation" is reported (0 < T ≤ 1e6).
+    threads : the size of this call's thread pool (default: the global pool, all cores).
+
+    Returns
+    -------
+    CorResult with NumPy arrays ``ts``, ``e``, ``separated``, ``nfev`` (one entry per speed).
+
+    Examples
+    --------
+    >>> r = bwcl.cor("shc", base=bwcl.TABLE1["SHC DSS"][1], v0=[0.5, 1, 2])
+    >>> r.e  # doctest: +SKIP
+    array([0.9…, 0.8…, 0.7…])
+    """
+    argv = ["cor"] + _source(model, base, nd, physical, False)
+    argv += _float_engine(rtol, atol, max_step, horizon)
+    arr = tokens = None
+    if v0 is not None:
+        arr = _speeds_array(v0)
+        if arr is None:
+            tokens = _speed_tokens(v0, False)
+    d = _bwcl.cor(argv, v0_array=arr, v0_tokens=tokens, threads=_threads(threads))
+    return CorResult(
+        model=d["model"],
+        v0=d["v0"],
+        ts=d["ts"],
+        e=d["e"],
+        separated=d["separated"],
+        nfev=d["nfev"],
+        steps=d["steps"],
+        params=d["params"],
+        error=tuple(d["error"]),
+        ts_seconds=d.get("ts_seconds"),
+        t_c=d.get("t_c"),
+        horizon=d["horizon"],
+        seconds=d["seconds"],
+        threads=d["threads"],
+    )
+
+
+def cor_rigorous(
+    model: str,
+    *,
+    base: Any = None,
+    nd: Any = None,
+    physical: Any = None,
+    v0: Any = None,
+    horizon: float = 100.0,
+    order: int = 16,
+    pieces: int = 32,
+    threads: Optional[int] = None,
+    raise_on_failure: bool = False,
+) -> RigorousResult:
+    """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
+    Taylor engine, one case per impact speed.
+
+    Every input may be a number (enclosed as its shortest decimal ``repr``: the enclosure
+    holds that decimal and the double itself), a decimal string (enclosed as written:
+    ``"0.632"`` is not a double) or a range ``(lo, hi)`` (proved over the whole range; a
+    range that cannot be proved whole is bisected into at most ``pieces`` sub-ranges, whose
+    hull is the result). In ``v0`` a range is an item: ``v0=[(0.9, 1.1)]``.
+
+    A batch reports per case: ``status[i]`` is "proved" or "not proved", with ``reason[i]``
+    saying why (the other cases are still computed). With ``raise_on_failure=True`` a case
+    not proved raises :class:`NotProvedError` (carrying the whole result) instead.
+
+    Parameters
+    ----------
+    model, base, nd, physical, v0 : as :func:`cor`.
+    horizon : nondimensional time within which separation must be proved.
+    order : Taylor order K of the engine, 2 ≤ K ≤ 40.
+    pieces : most sub-ranges of a range input, 1 ≤ N ≤ 1024.
+    threads : the size of this call's thread pool.
+
+    Returns
+    -------
+    RigorousResult: ``ts``, ``e`` (n, 2) float bounds, ``ts_text``, ``e_text`` the decimals
+    rounded outward, ``status`` and ``reason`` per case.
+    """
+    argv = ["cor"] + _source(model, base, nd, physical, True)
+    argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
+    argv += [f"--order={_num(order, 'order')}", f"--pieces={_num(pieces, 'pieces')}"]
+    tokens = None if v0 is None else _speed_tokens(v0, True)
+    d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, threads=_threads(threads))
+    n = len(d["proved"])
+    res = RigorousResult(
+        model=d["model"],
+        status=tuple("proved" if p else "not proved" for p in d["proved"]),
+        proved=d["proved"],
+        separated=d["separated"],
+        reason=tuple(d["reason"]),
+        v0=d["v0"],
+        ts=d["ts"],
+        e=d["e"],
+        width_ts=d["width_ts"],
+        width_e=d["width_e"],
+        v0_text=tuple(d["v0_text"]),
+        ts_text=tuple(d["ts_text"]),
+        e_text=tuple(d["e_text"]),
+        width_ts_text=tuple(d["width_ts_text"]),
+        width_e_text=tuple(d["width_e_text"]),
+        params=d["params"].reshape(n, 6, 2),
+        ts_seconds=d.get("ts_seconds"),
+        horizon=d["horizon"],
+        order=d["order"],
+        seconds=d["seconds"],
+        threads=d["threads"],
+    )
+    if raise_on_failure and not res.proved.all():
+        bad = [i for i in range(n) if not res.proved[i]]
+        raise NotProvedError(
+            f"{len(bad)} of {n} case(s) not proved; case {bad[0]}: {res.reason[bad[0]]}", res
+        )
+    return res
+
+
+def _curve(
+    command: str,
+    model: Any,
+    base: Any,
+    nd: Any,
+    physical: Any,
+    v0: Any,
+    t_end: Any,
+    points: Any,
+    physical_units: bool,
+    rigorous: bool,
+    rtol: Any,
+    atol: Any,
+    max_step: Any,
+    horizon: Any,
+    order: Any,
+    threads: Any,
+) -> dict:
+    argv = [command] + _source(model, base, nd, physical, rigorous)
+    if v0 is not None:
+        argv.append("--v0=" + ",".join(_speed_tokens(v0, rigorous)))
+    argv.append(f"--points={_num(points, 'points')}")
+    if t_end is not None:
+        argv.append(f"--t-end={_num(t_end, 't_end')}")
+    if physical_units:
+        argv.append("--physical-units")
+    if rigorous:
+        argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
+        if order is not None:
+            argv.append(f"--order={_num(order, 'order')}")
+    else:
+        argv += _float_engine(rtol, atol, max_step, horizon)
+        if order is not None:
+            argv.append(f"--order={_num(order, 'order')}")
+    return _bwcl.trajectory(argv, threads=_threads(threads))
+
+
+def trajectory(
+    model: str,
+    *,
+    base: Any = None,
+    nd: Any = None,
+    physical: Any = None,
+    v0: Any = None,
+    t_end: Optional[float] = None,
+    points: int = 1000,
+    physical_units: bool = False,
+    rigorous: bool = False,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_step: float = 1e-2,
+    horizon: float = 100.0,
+    order: Optional[int] = None,
+    threads: Optional[int] = None,
+) -> TrajectoryResult:
+    """The trajectory Φ(T) of the collision at ``points`` uniform times from 0 to T_s
+    (eq:main_t_s; or ``t_end``; the horizon without separation), as the CLI's
+    ``trajectory``.
+
+    Float (default): samples of the DOP853 dense output; with ``physical`` and
+    ``physical_units=True``, t [s], x [m], v [m/s], F [N] (t = T·T_c, x = X·X_c,
+    eq:BWSHCCM_T_c, eq:BWSHCCM_X_c). ``rigorous=True``: enclosures of the proved flow up to
+    the upper bound of T_s. One impact speed ``v0`` (with ``base`` or ``physical``).
+    """
+    d = _curve("trajectory", model, base, nd, physical, v0, t_end, points, physical_units,
+               rigorous, rtol, atol, max_step, horizon, order, threads)
+    states = d["states"]
+    names = tuple(d["state_names"])
+    if d["rigorous"]:
+        states = states.reshape(len(d["t"]), len(names), 2)
+    return TrajectoryResult(
+        model=d["model"], t=d["t"], states=states, state_names=names, x=d["x"], v=d["v"],
+        F=d["F"], units=d["units"], rigorous=d["rigorous"], note=d["note"],
+    )
+
+
+def loop(
+    model: str,
+    *,
+    base: Any = None,
+    nd: Any = None,
+    physical: Any = None,
+    v0: Any = None,
+    t_end: Optional[float] = None,
+    points: int = 1000,
+    physical_units: bool = False,
+    rigorous: bool = False,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_step: float = 1e-2,
+    horizon: float = 100.0,
+    order: Optional[int] = None,
+    threads: Optional[int] = None,
+) -> LoopResult:
+    """The hysteresis loop: the contact force F_P against the deformation X up to T_s, as the
+    CLI's ``loop`` (the paper's Fig. 4). Nondimensional, or with ``physical`` and
+    ``physical_units=True`` x = |x| in mm and F in N. Arguments as :func:`trajectory`."""
+    d = _curve("loop", model, base, nd, physical, v0, t_end, points, physical_units,
+               rigorous, rtol, atol, max_step, horizon, order, threads)
+    x = d["x"]
+    if d["units"] == "physical":
+        x = np.abs(x) * 1e3
+    return LoopResult(model=d["model"], x=x, F=d["F"], units=d["units"],
+                      rigorous=d["rigorous"], note=d["note"])
+
+
+def _data_args(data: Any, v0: Any, e: Any) -> Tuple[str, Optional[np.ndarray], Optional[np.ndarray]]:
+    """--data and the arrays: a CSV path (header v0,e) or two 1-D arrays."""
+    if data is not None:
+        if v0 is not None or e is not None:
+            raise ValueError("give either data (a CSV file) or the arrays v0 and e, not both")
+        if not isinstance(data, (str, os.PathLike)):
+            raise TypeError(f"data: expected the path of a CSV file, got {type(data).__name__}")
+        return "--data=" + os.fspath(data), None, None
+    if v0 is None or e is None:
+        raise ValueError("give data (a CSV file with the header v0,e) or both arrays v0 and e")
+    arrays = []
+    for name, a in (("v0", v0), ("e", e)):
+        a = np.asarray(a)
+        if a.ndim != 1:
+            raise ValueError(f"{name} must be a 1-D array, got shape {a.shape}")
+        if a.dtype.kind not in "fiu":
+            raise TypeError(f"{name}: expected numbers, got an array of dtype {a.dtype}")
+        arrays.append(np.ascontiguousarray(a, dtype=np.float64))
+    return "--data=<arrays>", arrays[0], arrays[1]
+
+
+def _cost_result(cls: Any, d: dict, **extra: Any) -> Any:
+    return cls(
+        model=d["model"], base=tuple(d["base"]), J=d["J"], m=d["m"], rms=d["rms"],
+        v0=d["v0"], e_data=d["e_data"], e_model=d["e_model"],
+        errors=tuple(tuple(x) for x in d["errors"]), **extra,
+    )
+
+
+def cost(
+    model: str,
+    data: Any = None,
+    *,
+    base: Any,
+    v0: Any = None,
+    e: Any = None,
+    threads: Optional[int] = None,
+) -> CostResult:
+    """J(ṽ0, ẽ, P*) = sqrt(Σ_i (ẽ_i − e(𝓟(P*, ṽ0_i)))²) (eq:J) of the base set ``base`` on
+    measured data: a CSV file ``data`` with the header ``v0,e`` (as the CLI's ``--data``), or
+    the arrays ``v0`` [m/s] and ``e``. The CoRs at the paper's settings, in parallel."""
+    data_arg, a, b = _data_args(data, v0, e)
+    argv = ["cost"] + _source(model, base, None, None, False) + [data_arg]
+    d = _bwcl.cost(argv, v0=a, e=b, threads=_threads(threads))
+    return _cost_result(CostResult, d)
+
+
+def _text_progress() -> Callable[[FitProgress], None]:
+    """A progress bar: tqdm when installed, else one line on stderr rewritten in place."""
+    try:
+        from tqdm.auto import tqdm  # type: ignore
+
+        bar = None
+
+        def show(p: FitProgress) -> None:
+            nonlocal bar
+            if bar is None:
+                bar = tqdm(total=p.total, desc="fit", unit="it")
+            bar.n = p.done
+            bar.set_postfix(starts=f"{p.starts_done}/{p.starts}", J=f"{p.last_J:.4e}")
+            if p.done >= p.total or p.starts_done == p.starts:
+                bar.close()
+
+        return show
+    except ImportError:
+        def line(p: FitProgress) -> None:
+            end = "\n" if p.starts_done == p.starts else ""
+            last = "" if p.last_J != p.last_J else f", last J = {p.last_J:.4e}"
+            sys.stderr.write(
+                f"\rfit {p.done}/{p.total} iterations, {p.starts_done}/{p.starts} starts{last}{end}"
+            )
+            sys.stderr.flush()
+
+        return line
+
+
+def fit(
+    model: str,
+    data: Any = None,
+    *,
+    v0: Any = None,
+    e: Any = None,
+    starts: int = 4,
+    seed: int = 1,
+    max_iter: int = 300,
+    init: Any = None,
+    p1: bool = False,
+    progress: Union[None, bool, Callable[[FitProgress], Any]] = None,
+    threads: Optional[int] = None,
+) -> FitResult:
+    """Identify the base parameters P* = (B_b, Γ_b, κ, σ_b, n, p) from measured CoR data by
+    minimizing J (eq:J) inside 𝓟, as the CLI's ``fit``: Nelder–Mead from ``starts`` seeded
+    random points (and ``init``, a base set to refine), each restarted once from its best
+    vertex, on a smooth bijection ℝ⁶ → 𝓟. The Maxwell model's p = 1 (an isolated point of 𝓟)
+    is searched only with ``p1=True``.
+
+    Parameters
+    ----------
+    data : a CSV file with the header v0,e — or give the arrays ``v0`` and ``e``.
+    starts : random starts, 0 ≤ N ≤ 256 (0 needs ``init``); ``seed``: their seed.
+    max_iter : Nelder–Mead iterations per run, 1 ≤ M ≤ 10000.
+    progress : a callable receiving a :class:`FitProgress` after every iteration, or True for
+        a progress bar (tqdm when installed). An exception it raises is raised when the fit
+        returns.
+    threads : the size of this call's thread pool (starts and speeds run in parallel).
+    """
+    data_arg, a, b = _data_args(data, v0, e)
+    argv = ["fit"] + _source(model, None, None, None, False) + [data_arg]
+    argv += [f"--starts={_num(starts, 'starts')}", f"--seed={_num(seed, 'seed')}",
+             f"--max-iter={_num(max_iter, 'max_iter')}"]
+    if init is not None:
+        argv.append("--init=" + _six(init, "init", False))
+    if p1:
+        argv.append("--p1")
+    cb = None
+    if progress is True:
+        progress = _text_progress()
+    if callable(progress):
+        user = progress
+
+        def cb(done: int, total: int, starts_done: int, n: int, j: float) -> None:
+            user(FitProgress(done, total, starts_done, n, j))
+    elif progress not in (None, False):
+        raise TypeError(f"progress: expected a callable or True, got {type(progress).__name__}")
+    d = _bwcl.fit(argv, v0=a, e=b, progress=cb, threads=_threads(threads))
+    starts_out = tuple(
+        FitStart(start=s["start"], J=s["J"], base=tuple(s["base"]), initial=tuple(s["initial"]),
+                 iterations=s["iterations"], evaluations=s["evaluations"],
+                 converged=s["converged"])
+        for s in d["starts"]
+    )
+    return _cost_result(FitResult, d, p1=d["p1"], seed=d["seed"], evaluations=d["evaluations"],
+                        seconds=d["seconds"], starts=starts_out)

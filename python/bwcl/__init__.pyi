@@ -1,0 +1,207 @@
+"""Type stubs of the bwcl package (see the docstrings in __init__.py)."""
+
+import os
+from typing import Any, Callable, Dict, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+TABLE1: Dict[str, Tuple[str, str]]
+
+#: a value: a number, a decimal string read as written, or (cor_rigorous) a range (lo, hi)
+Value = Union[float, int, str, Tuple[Union[float, int, str], Union[float, int, str]]]
+#: six values B,Γ,κ,σ,n,p (or B_b,Γ_b,κ,σ_b,n,p), or the CLI's comma-separated text
+ParamSet = Union[str, Sequence[Value], npt.NDArray[np.floating[Any]]]
+#: SI parameters m, k, c, n, p, alpha, beta, gamma, A, or the CLI's "m=…,k=…" text
+Physical = Union[str, Mapping[str, Value]]
+#: impact speeds [m/s]: a number, a 1-D array or sequence, or the CLI's list "0.5,1,2"
+Speeds = Union[float, int, str, Sequence[Value], npt.ArrayLike]
+PathLike = Union[str, os.PathLike]
+
+class NotProvedError(RuntimeError):
+    result: Optional[RigorousResult]
+    def __init__(self, message: str, result: Optional[RigorousResult] = ...) -> None: ...
+
+class CorResult:
+    model: str
+    v0: npt.NDArray[np.float64]
+    ts: npt.NDArray[np.float64]
+    e: npt.NDArray[np.float64]
+    separated: npt.NDArray[np.bool_]
+    nfev: npt.NDArray[np.int64]
+    steps: npt.NDArray[np.int64]
+    params: npt.NDArray[np.float64]
+    error: Tuple[Optional[str], ...]
+    ts_seconds: Optional[npt.NDArray[np.float64]]
+    t_c: Optional[npt.NDArray[np.float64]]
+    horizon: float
+    seconds: float
+    threads: int
+    @property
+    def ok(self) -> npt.NDArray[np.bool_]: ...
+    def __len__(self) -> int: ...
+
+class RigorousResult:
+    model: str
+    status: Tuple[str, ...]
+    proved: npt.NDArray[np.bool_]
+    separated: npt.NDArray[np.bool_]
+    reason: Tuple[Optional[str], ...]
+    v0: npt.NDArray[np.float64]
+    ts: npt.NDArray[np.float64]
+    e: npt.NDArray[np.float64]
+    width_ts: npt.NDArray[np.float64]
+    width_e: npt.NDArray[np.float64]
+    v0_text: Tuple[Optional[Tuple[str, str]], ...]
+    ts_text: Tuple[Optional[Tuple[str, str]], ...]
+    e_text: Tuple[Optional[Tuple[str, str]], ...]
+    width_ts_text: Tuple[Optional[str], ...]
+    width_e_text: Tuple[Optional[str], ...]
+    params: npt.NDArray[np.float64]
+    ts_seconds: Optional[npt.NDArray[np.float64]]
+    horizon: float
+    order: int
+    seconds: float
+    threads: int
+    def __len__(self) -> int: ...
+
+class TrajectoryResult:
+    model: str
+    t: npt.NDArray[np.float64]
+    states: npt.NDArray[np.float64]
+    state_names: Tuple[str, ...]
+    x: npt.NDArray[np.float64]
+    v: npt.NDArray[np.float64]
+    F: npt.NDArray[np.float64]
+    units: str
+    rigorous: bool
+    note: Optional[str]
+
+class LoopResult:
+    model: str
+    x: npt.NDArray[np.float64]
+    F: npt.NDArray[np.float64]
+    units: str
+    rigorous: bool
+    note: Optional[str]
+
+class CostResult:
+    model: str
+    base: Tuple[float, ...]
+    J: float
+    m: int
+    rms: float
+    v0: npt.NDArray[np.float64]
+    e_data: npt.NDArray[np.float64]
+    e_model: npt.NDArray[np.float64]
+    errors: Tuple[Tuple[float, str], ...]
+
+class FitStart:
+    start: int
+    J: float
+    base: Tuple[float, ...]
+    initial: Tuple[float, ...]
+    iterations: int
+    evaluations: int
+    converged: bool
+
+class FitResult(CostResult):
+    p1: bool
+    seed: int
+    evaluations: int
+    seconds: float
+    starts: Tuple[FitStart, ...]
+
+class FitProgress(NamedTuple):
+    done: int
+    total: int
+    starts_done: int
+    starts: int
+    last_J: float
+
+def cor(
+    model: str,
+    *,
+    base: Optional[ParamSet] = ...,
+    nd: Optional[ParamSet] = ...,
+    physical: Optional[Physical] = ...,
+    v0: Optional[Speeds] = ...,
+    rtol: float = ...,
+    atol: float = ...,
+    max_step: float = ...,
+    horizon: float = ...,
+    threads: Optional[int] = ...,
+) -> CorResult: ...
+def cor_rigorous(
+    model: str,
+    *,
+    base: Optional[ParamSet] = ...,
+    nd: Optional[ParamSet] = ...,
+    physical: Optional[Physical] = ...,
+    v0: Optional[Speeds] = ...,
+    horizon: float = ...,
+    order: int = ...,
+    pieces: int = ...,
+    threads: Optional[int] = ...,
+    raise_on_failure: bool = ...,
+) -> RigorousResult: ...
+def trajectory(
+    model: str,
+    *,
+    base: Optional[ParamSet] = ...,
+    nd: Optional[ParamSet] = ...,
+    physical: Optional[Physical] = ...,
+    v0: Optional[Speeds] = ...,
+    t_end: Optional[float] = ...,
+    points: int = ...,
+    physical_units: bool = ...,
+    rigorous: bool = ...,
+    rtol: float = ...,
+    atol: float = ...,
+    max_step: float = ...,
+    horizon: float = ...,
+    order: Optional[int] = ...,
+    threads: Optional[int] = ...,
+) -> TrajectoryResult: ...
+def loop(
+    model: str,
+    *,
+    base: Optional[ParamSet] = ...,
+    nd: Optional[ParamSet] = ...,
+    physical: Optional[Physical] = ...,
+    v0: Optional[Speeds] = ...,
+    t_end: Optional[float] = ...,
+    points: int = ...,
+    physical_units: bool = ...,
+    rigorous: bool = ...,
+    rtol: float = ...,
+    atol: float = ...,
+    max_step: float = ...,
+    horizon: float = ...,
+    order: Optional[int] = ...,
+    threads: Optional[int] = ...,
+) -> LoopResult: ...
+def cost(
+    model: str,
+    data: Optional[PathLike] = ...,
+    *,
+    base: ParamSet,
+    v0: Optional[npt.ArrayLike] = ...,
+    e: Optional[npt.ArrayLike] = ...,
+    threads: Optional[int] = ...,
+) -> CostResult: ...
+def fit(
+    model: str,
+    data: Optional[PathLike] = ...,
+    *,
+    v0: Optional[npt.ArrayLike] = ...,
+    e: Optional[npt.ArrayLike] = ...,
+    starts: int = ...,
+    seed: int = ...,
+    max_iter: int = ...,
+    init: Optional[ParamSet] = ...,
+    p1: bool = ...,
+    progress: Union[None, bool, Callable[[FitProgress], Any]] = ...,
+    threads: Optional[int] = ...,
+) -> FitResult: ...

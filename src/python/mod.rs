@@ -1,0 +1,44 @@
+//! The Python extension module `bwcl._bwcl` (cargo feature `python`, built by maturin from
+//! `pyproject.toml`; the public API is the pure-Python package in `python/bwcl/`).
+//!
+//! Every call goes the CLI's way: the keyword arguments arrive as the CLI's own arguments
+//! (`--base=…`, `--v0=…`, `--rtol=…`), are parsed by its clap definitions and checked by its
+//! input code ([`cli`], the same files as the `bwcl` program), so a bad value raises
+//! `ValueError` with the one line the program prints. The cases then run on the library's
+//! engines, with the GIL released and the speeds in parallel on rayon ([`run::compute`]); a
+//! Rust panic becomes a `RuntimeError`, never an abort.
+//!
+//! - [`cor`]: T_s and e on the f64 DOP853 engine (eq:main_t_s, eq:main_cor);
+//! - [`rigorous`]: their proved enclosures, rounded outward as floats and decimals;
+//! - [`trajectory`]: the sampled trajectory and hysteresis loop, float or proved;
+//! - [`fit`]: the cost J (eq:J) and the multi-start Nelder–Mead fit, with a progress callback;
+//! - [`run`]: argument parsing, errors, the thread pool and the GIL.
+
+// The CLI's sources, compiled into the library for the bindings (the program's entry point
+// and writers stay unused here).
+#[allow(dead_code)]
+#[path = "../cli/mod.rs"]
+mod cli;
+
+mod arrays;
+mod cor;
+mod fit;
+mod rigorous;
+mod run;
+mod trajectory;
+
+use pyo3::prelude::*;
+
+/// The native part of the `bwcl` package (use the functions of `bwcl`, not these).
+#[pymodule]
+fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(cor::cor, m)?)?;
+    m.add_function(wrap_pyfunction!(rigorous::cor_rigorous, m)?)?;
+    m.add_function(wrap_pyfunction!(trajectory::trajectory, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::cost, m)?)?;
+    m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;
+    Ok(())
+}

@@ -1,0 +1,118 @@
+//! `bwcl.cor_rigorous`: proved enclosures of T_s and e (the interval Taylor engine), each bound
+//! as a double and as the decimal the CLI prints, rounded outward
+//! ([`bwcl::observables::decimal`]); a case that is not proved carries its reason.
+
+use super::arrays::{put_bool, put_f64, put_f64_2d, speed_lists};
+use super::cli::commands::rigorous_row;
+use super::cli::input;
+use super::cor::cor_cases;
+use super::run::{compute, py_error};
+use bwcl::models::ModelKind;
+use bwcl::observables::decimal::{Rounding, outward};
+use inari::Interval;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+
+/// The bounds of an enclosure (NaN, NaN when there is none).
+fn pair(b: Option<[f64; 2]>) -> [f64; 2] {
+    b.unwrap_or([f64::NAN; 2])
+}
+
+/// The bounds as decimals rounded outward (lower down, upper up), as in the CLI's output.
+fn pair_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
+    b.map(|[lo, hi]| (outward(lo, Rounding::Down), outward(hi, Rounding::Up)))
+}
+
+/// Enclosures of T_s and e of every case (see `bwcl.cor_rigorous`): a dict of arrays and
+/// lists.
+#[pyfunction]
+#[pyo3(signature = (argv, v0_tokens=None, threads=None))]
+pub fn cor_rigorous<'py>(
+    py: Python<'py>,
+    argv: Vec<String>,
+    v0_tokens: Option<Vec<String>>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lists = speed_lists(None, v0_tokens);
+    let (a, cases) = cor_cases::<Interval>(argv, lists)?;
+    if !a.engine.rigorous {
+        return Err(PyValueError::new_err("not --rigorous: use bwcl.cor"));
+    }
+    let kind = ModelKind::from(a.params.model);
+    let opts = input::taylor_options(&a.engine).map_err(py_error)?;
+    let pieces = input::pieces(&a.engine);
+    let (rows, seconds, used) = compute(py, threads, || {
+        let start = std::time::Instant::now();
+        let rows: Vec<_> = cases
+            .par_iter()
+            .map(|c| rigorous_row(kind, c, &opts, pieces, false))
+            .collect();
+        (
+            rows,
+            start.elapsed().as_secs_f64(),
+            rayon::current_num_threads(),
+        )
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("model", kind.name())?;
+    let flat = |f: &dyn Fn(&super::cli::output::RigorousRow) -> [f64; 2]| -> Vec<f64> {
+        rows.iter().flat_map(f).collect()
+    };
+    put_f64_2d(&d, "v0", flat(&|r| pair(r.v0)), 2)?;
+    put_f64_2d(&d, "ts", flat(&|r| pair(r.ts)), 2)?;
+    put_f64_2d(&d, "e", flat(&|r| pair(r.e)), 2)?;
+    put_bool(&d, "proved", rows.iter().map(|r| r.proved).collect())?;
+    put_bool(&d, "separated", rows.iter().map(|r| r.separated).collect())?;
+    put_f64(
+        &d,
+        "width_ts",
+        rows.iter()
+            .map(|r| r.width_ts.unwrap_or(f64::NAN))
+            .collect(),
+    )?;
+    put_f64(
+        &d,
+        "width_e",
+        rows.iter().map(|r| r.width_e.unwrap_or(f64::NAN)).collect(),
+    )?;
+    if a.params.physical.is_some() {
+        put_f64_2d(&d, "ts_seconds", flat(&|r| pair(r.ts_seconds.flatten())), 2)?;
+    }
+    let params: Vec<f64> = rows
+        .iter()
+        .flat_map(|r| {
+            let p = &r.params;
+            [p.b, p.gamma, p.kappa, p.sigma, p.n, p.p]
+                .into_iter()
+                .flatten()
+                .collect::<Vec<f64>>()
+        })
+        .collect();
+    put_f64_2d(&d, "params", params, 12)?;
+    let text = |f: &dyn Fn(&super::cli::output::RigorousRow) -> Option<[f64; 2]>| {
+        rows.iter().map(|r| pair_text(f(r))).collect::<Vec<_>>()
+    };
+    d.set_item("v0_text", text(&|r| r.v0))?;
+    d.set_item("ts_text", text(&|r| r.ts))?;
+    d.set_item("e_text", text(&|r| r.e))?;
+    let up = |w: Option<f64>| w.map(|w| outward(w, Rounding::Up));
+    d.set_item(
+        "width_ts_text",
+        rows.iter().map(|r| up(r.width_ts)).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "width_e_text",
+        rows.iter().map(|r| up(r.width_e)).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "reason",
+        rows.iter().map(|r| r.reason.clone()).collect::<Vec<_>>(),
+    )?;
+    d.set_item("horizon", opts.horizon)?;
+    d.set_item("order", opts.order)?;
+    d.set_item("seconds", seconds)?;
+    d.set_item("threads", used)?;
+    Ok(d)
+}

@@ -1,0 +1,88 @@
+//! The way of every call: the CLI's parser and checks, errors as Python exceptions, the
+//! computation with the GIL released on a rayon pool, panics caught.
+
+use super::cli::args::Cli;
+use super::cli::{CliError, error_line, usage_message};
+use clap::Parser;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+/// Most threads of one call's pool.
+pub const MAX_THREADS: usize = 1024;
+
+/// A CLI error as a Python exception: bad input → `ValueError`, a computation that failed on
+/// valid input → `RuntimeError`; the message is the line the program prints after
+/// "bwcl: error: ".
+pub fn py_error(e: CliError) -> PyErr {
+    match e {
+        CliError::Input(m) => PyValueError::new_err(error_line(&m)),
+        CliError::Failed(m) => PyRuntimeError::new_err(error_line(&m)),
+    }
+}
+
+/// Parses the CLI's arguments (without the program name), as `bwcl` would.
+pub fn parse(argv: &[String]) -> PyResult<Cli> {
+    Cli::try_parse_from(std::iter::once("bwcl").chain(argv.iter().map(String::as_str)))
+        .map_err(|e| PyValueError::new_err(error_line(&usage_message(&e))))
+}
+
+/// The text of a panic's payload.
+fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = p.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = p.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "(no message)".into()
+    }
+}
+
+/// Runs `f` with the GIL released, on a pool of `threads` threads (the global rayon pool for
+/// `None`); a panic (in `f` or in one of its rayon tasks, which rayon carries back here)
+/// becomes a `RuntimeError`.
+pub fn compute<T, F>(py: Python<'_>, threads: Option<usize>, f: F) -> PyResult<T>
+where
+    T: Send,
+    F: FnOnce() -> T + Send,
+{
+    let pool = match threads {
+        None => None,
+        Some(k) if (1..=MAX_THREADS).contains(&k) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(k)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(format!("cannot start {k} threads: {e}")))?,
+        ),
+        Some(k) => {
+            return Err(PyValueError::new_err(format!(
+                "threads = {k} must be a whole number in 1..={MAX_THREADS}"
+            )));
+        }
+    };
+    py.detach(|| {
+        catch_unwind(AssertUnwindSafe(|| match &pool {
+            Some(p) => p.install(f),
+            None => f(),
+        }))
+    })
+    .map_err(|p| {
+        PyRuntimeError::new_err(format!(
+            "bwcl: internal error (a bug, please report it): {}",
+            panic_text(p.as_ref())
+        ))
+    })
+}
+
+/// Panics inside a rayon task with the GIL released: the tests check that this raises
+/// `RuntimeError` instead of aborting the interpreter.
+#[pyfunction]
+pub fn panic_for_test(py: Python<'_>, threads: Option<usize>) -> PyResult<usize> {
+    use rayon::prelude::*;
+    compute(py, threads, || {
+        (0..4usize)
+            .into_par_iter()
+            .map(|i| if i == 3 { panic!("a test panic") } else { i })
+            .sum()
+    })
+}

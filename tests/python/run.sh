@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The Python package's tests on a fresh machine: a venv (.venv-test), the test tools from PyPI,
+# the `bwcl` program (the tests compare against it) and the package built from this checkout
+# into the venv (maturin develop --release: the same cargo target directory as the program, so
+# a warm cargo cache is reused), then pytest on tests/python/.
+#
+#   bash tests/python/run.sh            # extra arguments go to pytest, e.g. -k dask -x
+#
+# Environment: PYTHON (the interpreter for the venv, default python3), BWCL_VENV (default
+# .venv-test at the repo root), CARGO_TARGET_DIR (default target/).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+cd "$ROOT"
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+VENV="${BWCL_VENV:-$ROOT/.venv-test}"
+PY="${PYTHON:-python3}"
+start=$(date +%s)
+
+if [ ! -x "$VENV/bin/python" ]; then
+    if ! "$PY" -m venv "$VENV" 2>/dev/null; then
+        # Debian/Ubuntu ship venv (ensurepip) separately
+        rm -rf "$VENV"
+        SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+        $SUDO apt-get update -qq && $SUDO apt-get install -y -qq python3-venv >/dev/null
+        "$PY" -m venv "$VENV"
+    fi
+fi
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check \
+    "maturin>=1.7,<2" numpy scipy pytest "dask[distributed]"
+
+echo "run.sh: building the bwcl program and the Python package (CARGO_TARGET_DIR=$CARGO_TARGET_DIR)"
+cargo build --release --quiet --bin bwcl
+VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" "$VENV/bin/maturin" develop --release --quiet
+
+BWCL_BIN="$CARGO_TARGET_DIR/release/bwcl" "$VENV/bin/python" -m pytest tests/python -q "$@"
+echo "run.sh: done in $(( $(date +%s) - start )) s"

@@ -1,0 +1,144 @@
+"""Bad input raises ValueError with the CLI's one line (the same parser and checks), wrong
+types TypeError, wrong shapes ValueError; nothing panics across the boundary."""
+
+import math
+
+import numpy as np
+import pytest
+
+import bwcl
+from conftest import BASEBALL_TEXT, DATA, DSS
+
+M = "--model=shc"
+B = f"--base={DSS}"
+
+# (the Python call, the same input to the program)
+CASES = [
+    ("v0 NaN", lambda: bwcl.cor("shc", base=DSS, v0=[1.0, math.nan]), ["cor", M, B, "--v0=1.0,NaN"]),
+    ("v0 negative", lambda: bwcl.cor("shc", base=DSS, v0=[-1.0]), ["cor", M, B, "--v0=-1.0"]),
+    ("v0 zero", lambda: bwcl.cor("shc", base=DSS, v0=[0.0]), ["cor", M, B, "--v0=0.0"]),
+    ("v0 inf", lambda: bwcl.cor("shc", base=DSS, v0="inf"), ["cor", M, B, "--v0=inf"]),
+    ("v0 empty", lambda: bwcl.cor("shc", base=DSS, v0=[]), ["cor", M, B, "--v0="]),
+    ("v0 malformed", lambda: bwcl.cor("shc", base=DSS, v0="1,abc"), ["cor", M, B, "--v0=1,abc"]),
+    ("v0 range float", lambda: bwcl.cor("shc", base=DSS, v0="0.9..1.1"), ["cor", M, B, "--v0=0.9..1.1"]),
+    ("v0 rigorous bad", lambda: bwcl.cor_rigorous("shc", base=DSS, v0=["1", "x1"]),
+     ["cor", M, B, "--v0=1,x1", "--rigorous"]),
+    ("v0 rigorous empty range", lambda: bwcl.cor_rigorous("shc", base=DSS, v0=[(2, 1)]),
+     ["cor", M, B, "--v0=2..1", "--rigorous"]),
+    ("Γ outside 𝓟", lambda: bwcl.cor("shc", base=[1.43, -1.5, 0.632, 0.00715, 1.31, 1.27], v0=1),
+     ["cor", M, "--base=1.43,-1.5,0.632,0.00715,1.31,1.27", "--v0=1"]),
+    ("κ = 1", lambda: bwcl.cor("shc", nd=[1, 0, 1, 1, 1, 1]), ["cor", M, "--nd=1,0,1,1,1,1"]),
+    ("n < 1", lambda: bwcl.cor("shc", nd="1,0,0.5,1,0.5,1"), ["cor", M, "--nd=1,0,0.5,1,0.5,1"]),
+    ("maxwell p", lambda: bwcl.cor("maxwell", nd=[1, 0, 0.5, 1, 1, 1.5]),
+     ["cor", "--model=maxwell", "--nd=1,0,0.5,1,1,1.5"]),
+    ("B NaN", lambda: bwcl.cor("shc", nd=[math.nan, 0, 0.5, 1, 1, 1]), ["cor", M, "--nd=nan,0,0.5,1,1,1"]),
+    ("five values", lambda: bwcl.cor("shc", nd=[1, 0, 0.5, 1, 1]), ["cor", M, "--nd=1,0,0.5,1,1"]),
+    ("malformed decimal", lambda: bwcl.cor_rigorous("shc", base=["1.4.3", -1.42, 0.632, 0.00715, 1.31, 1.27], v0=1),
+     ["cor", M, "--base=1.4.3,-1.42,0.632,0.00715,1.31,1.27", "--v0=1", "--rigorous"]),
+    ("control characters", lambda: bwcl.cor("shc", nd="1\x1b[31m,0,0.5,1,1,1"),
+     ["cor", M, "--nd=1\x1b[31m,0,0.5,1,1,1"]),
+    ("range Γ reaching B", lambda: bwcl.cor_rigorous("shc", nd=[1, (0.5, 1), 0.5, 1, 1, 1]),
+     ["cor", M, "--nd=1,0.5..1,0.5,1,1,1", "--rigorous"]),
+    ("wrong model", lambda: bwcl.cor("kelvin", base=DSS, v0=1), ["cor", "--model=kelvin", B, "--v0=1"]),
+    ("two sources", lambda: bwcl.cor("shc", base=DSS, nd=DSS, v0=1), ["cor", M, B, f"--nd={DSS}", "--v0=1"]),
+    ("no source", lambda: bwcl.cor("shc", v0=1), ["cor", M, "--v0=1"]),
+    ("nd with v0", lambda: bwcl.cor("shc", nd=DSS, v0=1), ["cor", M, f"--nd={DSS}", "--v0=1"]),
+    ("base without v0", lambda: bwcl.cor("shc", base=DSS), ["cor", M, B]),
+    ("rtol", lambda: bwcl.cor("shc", base=DSS, v0=1, rtol=2.0), ["cor", M, B, "--v0=1", "--rtol=2.0"]),
+    ("atol 0", lambda: bwcl.cor("shc", base=DSS, v0=1, atol=0.0), ["cor", M, B, "--v0=1", "--atol=0.0"]),
+    ("max_step", lambda: bwcl.cor("shc", base=DSS, v0=1, max_step=1e-12), ["cor", M, B, "--v0=1", "--max-step=1e-12"]),
+    ("horizon NaN", lambda: bwcl.cor("shc", base=DSS, v0=1, horizon=math.nan), ["cor", M, B, "--v0=1", "--horizon=nan"]),
+    ("horizon < 0", lambda: bwcl.cor("shc", base=DSS, v0=1, horizon=-1.0), ["cor", M, B, "--v0=1", "--horizon=-1.0"]),
+    ("order", lambda: bwcl.cor_rigorous("shc", base=DSS, v0=1, order=1), ["cor", M, B, "--v0=1", "--rigorous", "--order=1"]),
+    ("pieces", lambda: bwcl.cor_rigorous("shc", base=DSS, v0=1, pieces=0), ["cor", M, B, "--v0=1", "--rigorous", "--pieces=0"]),
+    ("physical malformed", lambda: bwcl.cor("shc", physical="m=0.1,k", v0=1), ["cor", M, "--physical=m=0.1,k", "--v0=1"]),
+    ("physical alpha", lambda: bwcl.cor("shc", physical=BASEBALL_TEXT.replace("alpha=0.1", "alpha=1.5"), v0=1),
+     ["cor", M, "--physical=" + BASEBALL_TEXT.replace("alpha=0.1", "alpha=1.5"), "--v0=1"]),
+    ("trajectory two speeds", lambda: bwcl.trajectory("shc", base=DSS, v0=[1, 2]),
+     ["trajectory", M, B, "--v0=1,2"]),
+    ("points", lambda: bwcl.trajectory("shc", nd=DSS, points=1), ["trajectory", M, f"--nd={DSS}", "--points=1"]),
+    ("t_end", lambda: bwcl.trajectory("shc", nd=DSS, t_end=0.0), ["trajectory", M, f"--nd={DSS}", "--t-end=0.0"]),
+    ("physical units", lambda: bwcl.loop("shc", nd=DSS, physical_units=True),
+     ["loop", M, f"--nd={DSS}", "--physical-units"]),
+    ("fit starts 0", lambda: bwcl.fit("shc", DATA, starts=0), ["fit", M, f"--data={DATA}", "--starts=0"]),
+    ("fit max_iter", lambda: bwcl.fit("shc", DATA, max_iter=0), ["fit", M, f"--data={DATA}", "--max-iter=0"]),
+    ("fit seed", lambda: bwcl.fit("shc", DATA, seed=-1), ["fit", M, f"--data={DATA}", "--seed=-1"]),
+    ("fit init p1", lambda: bwcl.fit("shc", DATA, init=DSS, p1=True), ["fit", M, f"--data={DATA}", f"--init={DSS}", "--p1"]),
+    ("data missing", lambda: bwcl.cost("shc", "/nonexistent/d.csv", base=DSS),
+     ["cost", M, B, "--data=/nonexistent/d.csv"]),
+    ("cost base", lambda: bwcl.cost("shc", DATA, base="1,2,3"), ["cost", M, "--base=1,2,3", f"--data={DATA}"]),
+]
+
+
+@pytest.mark.parametrize("name,call,argv", CASES, ids=[c[0] for c in CASES])
+def test_value_error_is_the_cli_line(name, call, argv, cli):
+    with pytest.raises(ValueError) as ex:
+        call()
+    code, out, err = cli(*argv)
+    assert code == 2 and out == ""
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("bwcl: error: ")
+    assert str(ex.value) == lines[0][len("bwcl: error: "):]
+    assert "\n" not in str(ex.value) and "\x1b" not in str(ex.value)
+
+
+def test_bad_data_file(tmp_path, cli):
+    p = tmp_path / "d.csv"
+    p.write_text("v0,e\n1,0.5\n2,1.5\n")
+    with pytest.raises(ValueError) as ex:
+        bwcl.cost("shc", p, base=DSS)
+    code, out, err = cli("cost", "--model=shc", f"--base={DSS}", f"--data={p}")
+    assert code == 2 and str(ex.value) == err.strip()[len("bwcl: error: "):]
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: bwcl.cor("shc", base=DSS, v0=np.ones((2, 2))),
+        lambda: bwcl.cor("shc", base=np.ones((2, 3)), v0=1),
+        lambda: bwcl.cor_rigorous("shc", base=DSS, v0=["1,2"]),
+        lambda: bwcl.cost("shc", base=DSS, v0=np.ones((3, 1)), e=np.ones(3)),
+        lambda: bwcl.cost("shc", base=DSS, v0=[1, 2], e=[0.5, 1.5]),
+        lambda: bwcl.cost("shc", base=DSS, v0=[1, 2], e=[0.5]),
+        lambda: bwcl.fit("shc", v0=[1.0]),
+        lambda: bwcl.fit("shc", DATA, v0=[1.0], e=[0.5]),
+        lambda: bwcl.cor("shc", base=DSS, v0=1, threads=0),
+        lambda: bwcl.cor("shc", base=DSS, v0=1, threads=100000),
+    ],
+    ids=["v0 2-D", "base 2-D", "comma in item", "data 2-D", "e > 1", "lengths", "v0 without e",
+         "data and arrays", "threads 0", "threads huge"],
+)
+def test_shapes_and_other_values(call):
+    with pytest.raises(ValueError) as ex:
+        call()
+    assert str(ex.value) and "\n" not in str(ex.value)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: bwcl.cor(3, base=DSS, v0=1),
+        lambda: bwcl.cor("shc", base={"B": 1}, v0=1),
+        lambda: bwcl.cor("shc", base=DSS, v0=[True]),
+        lambda: bwcl.cor("shc", base=[1, 2, 3, 4, 5, object()], v0=1),
+        lambda: bwcl.cor("shc", physical=[1, 2], v0=1),
+        lambda: bwcl.fit("shc", DATA, progress="yes"),
+    ],
+)
+def test_wrong_types(call):
+    with pytest.raises(TypeError):
+        call()
+
+
+def test_failed_integration_is_per_case():
+    """Valid input that the engine cannot integrate (a step budget): reported per case."""
+    r = bwcl.cor("shc", base=DSS, v0=[1.0], max_step=1e-9, horizon=1.0)
+    assert not r.ok[0] and r.error[0] and np.isnan(r.e[0])
+
+
+def test_a_panic_is_a_python_exception():
+    for threads in (None, 1, 2):
+        with pytest.raises(RuntimeError, match="internal error"):
+            bwcl._bwcl.panic_for_test(threads)
+    # and the interpreter goes on
+    assert bwcl.cor("shc", base=DSS, v0=1).ok.all()
