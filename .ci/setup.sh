@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Machine setup for a fresh machine. Prints the cargo flags to build with on stdout (nothing, or
-# `--no-default-features`); everything else goes to stderr. Use: FLAGS=$(bash .ci/setup.sh).
+# `--no-default-features --features plots` for the fallback below); everything else goes to
+# stderr. Use: FLAGS=$(bash .ci/setup.sh).
 #
 # GMP and MPFR (for rug): the system's libraries (Debian 12: libgmp-dev 6.2, libmpfr-dev 4.2),
 # installed here when missing; the default cargo feature `system-gmp` links them. Where they
 # cannot be installed (no apt, no root), or with BWCL_BUILD_GMP=1, the fallback: cargo builds
-# GMP and MPFR from source (about 3 min more; needs m4), selected by `--no-default-features`.
+# GMP and MPFR from source (about 3 min more; needs m4), selected by leaving out the default
+# feature `system-gmp`.
 # The plots of paper_repro lay out text with a TrueType font (DejaVu).
 set -euo pipefail
 command -v cargo >/dev/null || { echo "setup: cargo not found" >&2; exit 1; }
@@ -34,5 +36,5 @@ if [ "$system_gmp" = 1 ] && ! { have_header gmp.h && have_header mpfr.h; }; then
 fi
 if [ "$system_gmp" = 0 ]; then
   command -v m4 >/dev/null 2>&1 || install m4 || echo "setup: could not install m4" >&2
-  echo "--no-default-features"
+  echo "--no-default-features --features plots"
 fi

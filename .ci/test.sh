@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FLAGS=$(bash .ci/setup.sh)
-# shellcheck disable=SC2086 # FLAGS is empty or one flag
+export BWCL_CARGO_FLAGS="$FLAGS" # for tests/python/run.sh
+# shellcheck disable=SC2086 # FLAGS is empty or a few flags
 cargo test --release $FLAGS
 # shellcheck disable=SC2086
 cargo run --release --quiet $FLAGS --bin proof-lyapunov
@@ -13,3 +14,5 @@ cargo run --release --quiet $FLAGS --bin proof-lyapunov
 cargo run --release --quiet $FLAGS --bin proof-equilibria
 # shellcheck disable=SC2086
 cargo run --release --quiet $FLAGS --bin proof-certificate -- check
+# the Python package (issue #14): a venv, the package built with maturin, pytest
+bash tests/python/run.sh

@@ -7,7 +7,8 @@
 #   bash tests/python/run.sh            # extra arguments go to pytest, e.g. -k dask -x
 #
 # Environment: PYTHON (the interpreter for the venv, default python3), BWCL_VENV (default
-# .venv-test at the repo root), CARGO_TARGET_DIR (default target/).
+# .venv-test at the repo root), CARGO_TARGET_DIR (default target/), BWCL_CARGO_FLAGS (extra
+# cargo flags, set by .ci/test.sh after its setup).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$ROOT"
@@ -29,8 +30,11 @@ fi
     "maturin>=1.7,<2" numpy scipy pytest "dask[distributed]"
 
 echo "run.sh: building the bwcl program and the Python package (CARGO_TARGET_DIR=$CARGO_TARGET_DIR)"
-cargo build --release --quiet --bin bwcl
-VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" "$VENV/bin/maturin" develop --release --quiet
+# BWCL_CARGO_FLAGS: the cargo flags of .ci/setup.sh (the GMP/MPFR fallback), for both builds
+# shellcheck disable=SC2086 # empty or a few flags
+cargo build --release --quiet ${BWCL_CARGO_FLAGS:-} --bin bwcl
+# shellcheck disable=SC2086
+VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" "$VENV/bin/maturin" develop --release --quiet ${BWCL_CARGO_FLAGS:-}
 
 BWCL_BIN="$CARGO_TARGET_DIR/release/bwcl" "$VENV/bin/python" -m pytest tests/python -q "$@"
 echo "run.sh: done in $(( $(date +%s) - start )) s"
