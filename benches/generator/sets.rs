@@ -151,7 +151,7 @@ fn main() {
     writeln!(
         md,
         "With several ranges each input's slope is one run of the variational system; where one \
-         of them fails (\"the enclosure grew too wide\": SHC DSA and Maxwell DSA here) the \
+         of them fails (\"the enclosure grew too wide\") the \
          result is the hull of the parameters as components alone, without the mean-value form.\n"
     )
     .unwrap();
