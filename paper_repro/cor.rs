@@ -80,7 +80,7 @@ pub fn band_curve(
     a: f64,
     b: f64,
     thickness: f64,
-) -> Result<(Vec<Proved>, usize, f64), String> {
+) -> Result<(Vec<Proved>, usize, f64, f64), String> {
     use bwcl::observables::band::{BandOptions, prove_band};
     let base = NdParams::<Interval>::parse(set.kind, set.base).expect("Table 1 sets are in 𝓟");
     let t0 = std::time::Instant::now();
@@ -104,5 +104,12 @@ pub fn band_curve(
             });
         }
     }
-    Ok((pts, band.pieces.len(), band.thickness()))
+    // sup de/dv0 over all pieces: < 0 proves e strictly decreasing on [a, b] (the argument of
+    // `bwcl prove monotone`, here on the band's own pieces)
+    let max_slope = band
+        .pieces
+        .iter()
+        .map(|p| p.de.sup())
+        .fold(f64::NEG_INFINITY, f64::max);
+    Ok((pts, band.pieces.len(), band.thickness(), max_slope))
 }

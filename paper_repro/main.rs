@@ -188,7 +188,7 @@ fn run(args: Args) -> Result<(), String> {
     let float_seconds = t.elapsed().as_secs_f64();
     // the continuous proved band of e over [0.05, 6] m/s (issue #13), drawn at the ends and
     // centres of its pieces
-    let mut band_stats: Vec<(usize, f64, f64)> = Vec::new();
+    let mut band_stats: Vec<(usize, f64, f64, f64)> = Vec::new();
     let proved = if args.rigorous {
         let thickness = if args.quick {
             1e-3
@@ -201,12 +201,12 @@ fn run(args: Args) -> Result<(), String> {
         for s in cor::TABLE1.iter() {
             let t1 = std::time::Instant::now();
             match cor::band_curve(s, 0.05, 6.0, thickness) {
-                Ok((pts, pieces, thick)) => {
-                    band_stats.push((pieces, thick, t1.elapsed().as_secs_f64()));
+                Ok((pts, pieces, thick, slope)) => {
+                    band_stats.push((pieces, thick, t1.elapsed().as_secs_f64(), slope));
                     p.push(pts);
                 }
                 Err(why) => {
-                    band_stats.push((0, f64::NAN, t1.elapsed().as_secs_f64()));
+                    band_stats.push((0, f64::NAN, t1.elapsed().as_secs_f64(), f64::NAN));
                     p.push(vec![cor::Proved {
                         v0: 0.05,
                         e: Err(why),

@@ -293,7 +293,8 @@ pub struct Context<'a> {
     pub float_points: usize,
     pub rig: Option<&'a (Vec<Vec<Proved>>, f64)>,
     /// Per Table 1 set: pieces, thickness and seconds of the proved band.
-    pub band: &'a [(usize, f64, f64)],
+    /// Per set: pieces, thickness, seconds, sup de/dv0 over the pieces.
+    pub band: &'a [(usize, f64, f64, f64)],
     pub loops: &'a [Loop],
     pub curves: &'a [Vec<Result<f64, String>>],
     pub v0: &'a [f64],
@@ -451,19 +452,42 @@ pub fn render(c: &Context) -> String {
             .unwrap();
             writeln!(
                 r,
-                "| set | pieces | thickness | time |\n|---|---:|---:|---:|"
+                "| set | pieces | thickness | time | de/dv0 ≤ (every piece) |\n\
+                 |---|---:|---:|---:|---:|"
             )
             .unwrap();
-            for (s, (pieces, thick, t)) in TABLE1.iter().zip(c.band) {
+            for (s, (pieces, thick, t, slope)) in TABLE1.iter().zip(c.band) {
                 writeln!(
                     r,
-                    "| {} {} | {pieces} | {} | {t:.1} s |",
+                    "| {} {} | {pieces} | {} | {t:.1} s | {} |",
                     model_title(s.kind),
                     s.data,
-                    sci_up(*thick, 3)
+                    sci_up(*thick, 3),
+                    sci_up(*slope, 3)
                 )
                 .unwrap();
             }
+            let decreasing: Vec<String> = TABLE1
+                .iter()
+                .zip(c.band)
+                .filter(|(_, b)| b.3 < 0.0)
+                .map(|(s, _)| format!("{} {}", model_title(s.kind), s.data))
+                .collect();
+            writeln!(
+                r,
+                "\n**Proved: e(v0) is strictly decreasing on [0.05, 6] m/s for {} of the 4 Table 1 \
+                 sets** ({}; Fig. 3 shows it): the slope enclosure [de/dv0] of every piece of the \
+                 band lies below 0 (the last column bounds them all), and e is C¹ in v0, so the \
+                 mean-value theorem gives strict decrease; the same argument as `bwcl prove \
+                 monotone --model … --base … --v0 a..b` (issue #13, `proofs/README.md`).",
+                decreasing.len(),
+                if decreasing.is_empty() {
+                    "none".to_string()
+                } else {
+                    decreasing.join(", ")
+                }
+            )
+            .unwrap();
             r.push('\n');
             // the float value must lie in (or next to) the band: check and report
             let mut outside = 0;
