@@ -240,9 +240,10 @@ pub fn prove_band(
     bo: &BandOptions,
     opts: &TaylorOptions,
 ) -> Result<Band, RigorError> {
-    // the thickness of a proved piece grows like its width squared (the slope enclosure's
-    // width is proportional to the width): cut a piece too thick into as many parts as that
-    // predicts, with a 15 % margin, instead of halving it again and again
+    // the thickness of a proved piece grows like its width squared or faster (measured: about
+    // squared near 1e-6, faster on the first, wide pieces): cut a piece too thick into
+    // ⌈1.15·∛(thickness/target)⌉ parts instead of halving it again and again (the square root
+    // over-cut: v0 ∈ [2, 2.5] at 1e-5 took 88 pieces against 59 with the cube root)
     let done = adapt(kind, base, a, b, bo, opts, |p| {
         let t = p.thickness();
         if t <= bo.thickness {

@@ -5,14 +5,13 @@ use super::arrays::{put_bool, put_f64, put_f64_2d, put_i64, speed_lists};
 use super::cli::args::{Command, CorArgs};
 use super::cli::commands::float_row;
 use super::cli::input::{self, Case};
-use super::run::{compute, parse, py_error};
+use super::run::{compute_rows, parse, py_error};
 use bwcl::arith::Real;
 use bwcl::models::ModelKind;
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rayon::prelude::*;
 
 /// The `cor` arguments of `argv` (plus the first --v0 list) and the validated cases of every
 /// list, in order.
@@ -58,18 +57,7 @@ pub fn cor<'py>(
     }
     let kind = ModelKind::from(a.params.model);
     let opts = input::float_options(&a.engine).map_err(py_error)?;
-    let (rows, seconds, used) = compute(py, threads, || {
-        let start = std::time::Instant::now();
-        let rows: Vec<_> = cases
-            .par_iter()
-            .map(|c| float_row(kind, c, &opts))
-            .collect();
-        (
-            rows,
-            start.elapsed().as_secs_f64(),
-            rayon::current_num_threads(),
-        )
-    })?;
+    let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| float_row(kind, c, &opts))?;
     let d = PyDict::new(py);
     d.set_item("model", kind.name())?;
     put_f64(

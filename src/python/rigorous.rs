@@ -6,14 +6,13 @@ use super::arrays::{put_bool, put_f64, put_f64_2d, speed_lists};
 use super::cli::commands::rigorous_row;
 use super::cli::input;
 use super::cor::cor_cases;
-use super::run::{compute, py_error};
+use super::run::{compute_rows, py_error};
 use bwcl::models::ModelKind;
 use bwcl::observables::decimal::{Rounding, outward};
 use inari::Interval;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rayon::prelude::*;
 
 /// The bounds of an enclosure (NaN, NaN when there is none).
 fn pair(b: Option<[f64; 2]>) -> [f64; 2] {
@@ -43,17 +42,8 @@ pub fn cor_rigorous<'py>(
     let kind = ModelKind::from(a.params.model);
     let opts = input::taylor_options(&a.engine).map_err(py_error)?;
     let pieces = input::pieces(&a.engine);
-    let (rows, seconds, used) = compute(py, threads, || {
-        let start = std::time::Instant::now();
-        let rows: Vec<_> = cases
-            .par_iter()
-            .map(|c| rigorous_row(kind, c, &opts, pieces, false))
-            .collect();
-        (
-            rows,
-            start.elapsed().as_secs_f64(),
-            rayon::current_num_threads(),
-        )
+    let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
+        rigorous_row(kind, c, &opts, pieces, false)
     })?;
     let d = PyDict::new(py);
     d.set_item("model", kind.name())?;

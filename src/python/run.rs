@@ -74,6 +74,31 @@ where
     })
 }
 
+/// [`compute`] of one row per case, in parallel: (the rows in order, the seconds the rows
+/// took, the threads of the pool that ran them).
+pub fn compute_rows<C, R, F>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    cases: &[C],
+    row: F,
+) -> PyResult<(Vec<R>, f64, usize)>
+where
+    C: Sync,
+    R: Send,
+    F: Fn(&C) -> R + Sync + Send,
+{
+    use rayon::prelude::*;
+    compute(py, threads, || {
+        let start = std::time::Instant::now();
+        let rows: Vec<R> = cases.par_iter().map(&row).collect();
+        (
+            rows,
+            start.elapsed().as_secs_f64(),
+            rayon::current_num_threads(),
+        )
+    })
+}
+
 /// Panics inside a rayon task with the GIL released: the tests check that this raises
 /// `RuntimeError` instead of aborting the interpreter.
 #[pyfunction]
