@@ -123,7 +123,7 @@ impl Neg for PSym {
 }
 
 impl Real for PSym {
-    type Dot = bwcl::arith::dot::PlainDot<PSym>;
+    type Dot = bwcl::arith::PlainDot<PSym>;
     type Prepared = ();
     fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {

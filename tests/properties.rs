@@ -16,7 +16,7 @@
 //! validation), search for states where the property fails, assert that such states exist and
 //! print one counterexample.
 
-use bwcl::arith::dual::Dual;
+use bwcl::arith::jet::dual::Dual;
 use bwcl::engines::dop853::{Dop853, Dop853Error, Options};
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};

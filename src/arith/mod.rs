@@ -1,26 +1,20 @@
-//! Arithmetic layer: the number traits and their implementations.
+//! Arithmetic layer: the number traits at the root, one folder per family of numbers.
 //!
-//! - [`real`]: the coefficient fields (`f64`, inari intervals) and the [`Real`] trait;
-//! - [`scalar`]: the [`Scalar`] trait the models are written against;
-//! - [`interval`]: inari `Interval` as a `Real`, exact enclosure of decimal input;
-//! - [`series`]: truncated Taylor series over any `Real`;
-//! - [`dual`]: forward-mode dual numbers (gradients, Jacobians);
-//! - [`exponent`]: a model's power exponent with what its arithmetic precomputes for it;
-//! - [`fastpow`]: x^q for the f64 engine by tables per exponent (low latency);
-//! - [`dot`]: accumulators of sums of products (the recurrences' inner loop);
-//! - [`ulp`]: interval operations by outward ulp steps (no rounding-mode switches).
+//! | where | what | used by |
+//! |---|---|---|
+//! | [`real`], [`scalar`] | the traits: [`Real`] (a coefficient field, with its [`Exponent`] and [`Dot`] accumulator) and [`Scalar`] (what the models are written against) | everything |
+//! | [`float`] | `f64` as a `Real`, powers by tables ([`float::fastpow`]) | the f64 DOP853 engine |
+//! | [`interval`] | inari intervals as a `Real`, exact enclosure of decimal input, ulp kernels ([`interval::ulp`]), sums of products ([`interval::dot`]), exp/ln/pow ([`interval::elementary`]) | the rigorous engine |
+//! | [`jet`] | truncated Taylor series ([`jet::series`]) and dual numbers ([`jet::dual`]) over any `Real` | the rigorous engine's jets and Jacobians, sensitivities, tests |
+//!
+//! Imports go downwards only: the families import the root traits, never each other's
+//! internals (an interval's `Real` powers are inari's; the jets are generic).
 
-pub mod dot;
-pub mod dual;
-pub mod elementary;
-pub mod exponent;
-pub mod fastpow;
+pub mod float;
 pub mod interval;
+pub mod jet;
 pub mod real;
 pub mod scalar;
-pub mod series;
-pub mod ulp;
 
-pub use exponent::Exponent;
-pub use real::Real;
+pub use real::{Dot, Exponent, PlainDot, Real};
 pub use scalar::Scalar;

@@ -1,11 +1,12 @@
-//! The number trait of coefficient fields: `f64`, inari `Interval` (and later MPFR intervals).
+//! The traits of a coefficient field: [`Real`], the [`Exponent`] its powers are prepared for,
+//! and the [`Dot`] accumulator of its sums of products.
 //!
 //! A [`Real`] is a number that can stand for a parameter of a model (B, Γ, κ, σ, n, p) or for a
 //! Taylor coefficient. Every operation of an interval implementation must enclose the exact
 //! real result for every point of its arguments; the `f64` implementation rounds to nearest.
+//! The implementations live in the families below this folder: [`super::float`] (`f64`),
+//! [`super`] (inari intervals, their ulp kernels), [`super::jet`] (series, duals).
 
-use super::exponent::Exponent;
-use super::fastpow::Power;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -28,9 +29,9 @@ pub trait Real:
     + Neg<Output = Self>
     + 'static
 {
-    /// The accumulator of Σ aⱼ·bⱼ (see [`super::dot`]): for intervals, one enclosure of the
+    /// The accumulator of Σ aⱼ·bⱼ (see [`Dot`]): for intervals, one enclosure of the
     /// whole sum instead of a rounded operation per term.
-    type Dot: super::dot::Dot<Self>;
+    type Dot: Dot<Self>;
     /// A small integer, exactly (|k| ≤ 2^53).
     fn from_int(k: i64) -> Self;
     /// An `f64` that is *exactly* the intended value (a grid point, a value computed in f64 on
@@ -98,7 +99,7 @@ pub trait Real:
     type Prepared: Clone + Debug + Send + Sync;
     fn prepare_exponent(q: &Self) -> Self::Prepared;
     /// `spow` with a prepared exponent. The default is `spow(q.value())`; `f64` reads its
-    /// tables (a few ulps from `spow`, see [`super::fastpow`]).
+    /// tables (a few ulps from `spow`, see [`crate::arith::float::fastpow`]).
     #[inline]
     fn spow_prepared(&self, q: &Exponent<Self>) -> Self {
         self.spow(q.value())
@@ -148,198 +149,72 @@ pub trait Real:
     }
 }
 
-/// A prepared exponent q of the `f64` engine: |x|^(q−1) exactly for q = 1 and q = 2,
-/// otherwise by q − 1's tables ([`super::fastpow`], a few ulps).
+// ---- exponents ----
+
+/// A parameter q used as a power exponent, with its [`Real::Prepared`] data.
 #[derive(Clone, Debug)]
-pub enum F64Exponent {
-    One,
-    Two,
-    Tables(Power),
+pub struct Exponent<R: Real> {
+    q: R,
+    prepared: R::Prepared,
 }
 
-impl F64Exponent {
-    fn new(q: f64) -> Self {
-        if q == 1.0 {
-            F64Exponent::One
-        } else if q == 2.0 {
-            F64Exponent::Two
-        } else {
-            F64Exponent::Tables(Power::new(q - 1.0))
-        }
+impl<R: Real> Exponent<R> {
+    pub fn new(q: R) -> Self {
+        let prepared = R::prepare_exponent(&q);
+        Self { q, prepared }
+    }
+
+    /// q itself.
+    #[inline]
+    pub fn value(&self) -> &R {
+        &self.q
+    }
+
+    /// What the arithmetic precomputed for q.
+    #[inline]
+    pub fn prepared(&self) -> &R::Prepared {
+        &self.prepared
     }
 }
 
-/// The `f64` powers: with a prepared exponent (the models' right-hand sides) by tables; the
-/// others (Lyapunov functions, tests, one-off values) by the library `powf`.
-impl Real for f64 {
-    type Dot = super::dot::F64Dot;
-    type Prepared = F64Exponent;
-    fn prepare_exponent(q: &f64) -> F64Exponent {
-        F64Exponent::new(*q)
-    }
+// ---- sums of products ----
+
+/// An accumulator of Σ aⱼ·bⱼ over a number type `R`.
+pub trait Dot<R>: Sized {
+    /// The empty sum.
+    fn new() -> Self;
+    /// Adds a·b.
+    fn add_prod(&mut self, a: &R, b: &R);
+    /// Adds f·a·b for a constant f of the type (a factor of a recurrence, such as the power
+    /// recurrence's q(k − j) − j). Accumulators of interval types override it to take the
+    /// three-way product in one pass (no directed rounding of f·a).
     #[inline]
-    fn from_int(k: i64) -> Self {
-        k as f64
+    fn add_prod3(&mut self, f: &R, a: &R, b: &R)
+    where
+        R: Real,
+    {
+        self.add_prod(&a.mul_constant(f), b);
     }
-    #[inline]
-    fn from_exact_f64(x: f64) -> Self {
-        x
+    /// The sum (for an interval type: an enclosure of the exact sum of the exact products).
+    fn sum(self) -> R;
+}
+
+/// A sum of products in a type's own arithmetic (for types without a faster accumulator).
+#[derive(Clone, Debug)]
+pub struct PlainDot<R>(Option<R>);
+
+impl<R: Real> Dot<R> for PlainDot<R> {
+    fn new() -> Self {
+        Self(None)
     }
-    fn parse_decimal(s: &str) -> Result<Self, String> {
-        let t = s.trim();
-        if t.contains("..") {
-            return Err(format!("a range ({t}) needs the rigorous engine"));
-        }
-        let x: f64 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
-        if !x.is_finite() {
-            return Err(format!("'{t}' is not a finite number"));
-        }
-        Ok(x)
+    fn add_prod(&mut self, a: &R, b: &R) {
+        let p = a.clone() * b.clone();
+        self.0 = Some(match self.0.take() {
+            Some(s) => s + p,
+            None => p,
+        });
     }
-    fn unbounded() -> Self {
-        f64::NAN
-    }
-    #[inline]
-    fn abs(&self) -> Self {
-        f64::abs(*self)
-    }
-    #[inline]
-    fn sqrt(&self) -> Self {
-        f64::sqrt(*self)
-    }
-    fn ln(&self) -> Self {
-        f64::ln(*self)
-    }
-    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
-        if *w == 0.0 {
-            return 0.0;
-        }
-        let u = if signed { w.spow(q) } else { w.apow(q) };
-        u * w.abs().ln()
-    }
-    fn sgn(&self) -> Self {
-        if *self > 0.0 {
-            1.0
-        } else if *self < 0.0 {
-            -1.0
-        } else {
-            f64::NAN
-        }
-    }
-    #[inline]
-    fn pow(&self, y: &Self) -> Self {
-        self.powf(*y)
-    }
-    #[inline]
-    fn spow(&self, q: &Self) -> Self {
-        if *q == 1.0 {
-            *self
-        } else if *q == 2.0 {
-            self.abs() * self
-        } else if *self == 0.0 {
-            0.0
-        } else {
-            self.abs().powf(q - 1.0) * self
-        }
-    }
-    #[inline]
-    fn apow(&self, q: &Self) -> Self {
-        if *q == 1.0 {
-            self.abs()
-        } else if *q == 2.0 {
-            self * self
-        } else {
-            self.abs().powf(*q)
-        }
-    }
-    /// One power: a = |x|^(q−1), then (a·x, a·|x|).
-    #[inline]
-    fn spow_apow(&self, q: &Self) -> (Self, Self) {
-        if *q == 1.0 {
-            (*self, self.abs())
-        } else if *q == 2.0 {
-            (self.abs() * self, self * self)
-        } else if *self == 0.0 {
-            (0.0, 0.0)
-        } else {
-            let a = self.abs().powf(q - 1.0);
-            (a * self, a * self.abs())
-        }
-    }
-    /// One power: a = |x|^(q−1), then (a·x, a).
-    #[inline]
-    fn spow_base(&self, q: &Self) -> (Self, Self) {
-        if *q == 2.0 {
-            (self.abs() * self, self.abs())
-        } else if *self == 0.0 {
-            (0.0, if *q == 1.0 { 1.0 } else { 0.0 })
-        } else {
-            let a = self.abs().powf(q - 1.0);
-            (a * self, a)
-        }
-    }
-    // The three prepared powers repeat the same match on purpose: one shared helper returning
-    // (a, a·x) measured 3% slower per CoR (same values).
-    #[inline(always)]
-    fn spow_prepared(&self, q: &Exponent<f64>) -> f64 {
-        match q.prepared() {
-            F64Exponent::One => *self,
-            F64Exponent::Two => self.abs() * self,
-            F64Exponent::Tables(t) => {
-                if *self == 0.0 {
-                    0.0
-                } else {
-                    t.pow_and_mul(self.abs(), *self).1
-                }
-            }
-        }
-    }
-    /// One power: a = |x|^(q−1), then (a·x, |a·x|).
-    #[inline(always)]
-    fn spow_apow_prepared(&self, q: &Exponent<f64>) -> (f64, f64) {
-        match q.prepared() {
-            F64Exponent::One => (*self, self.abs()),
-            F64Exponent::Two => {
-                let s = self.abs() * self;
-                (s, s.abs())
-            }
-            F64Exponent::Tables(t) => {
-                if *self == 0.0 {
-                    (0.0, 0.0)
-                } else {
-                    // a ≥ 0: a·|x| = |a·x|, one multiplication fewer
-                    let s = t.pow_and_mul(self.abs(), *self).1;
-                    (s, s.abs())
-                }
-            }
-        }
-    }
-    /// One power: a = |x|^(q−1), then (a·x, a).
-    #[inline(always)]
-    fn spow_base_prepared(&self, q: &Exponent<f64>) -> (f64, f64) {
-        match q.prepared() {
-            F64Exponent::One => (*self, 1.0),
-            F64Exponent::Two => (self.abs() * self, self.abs()),
-            F64Exponent::Tables(t) => {
-                if *self == 0.0 {
-                    (0.0, 0.0)
-                } else {
-                    let (a, s) = t.pow_and_mul(self.abs(), *self);
-                    (s, a)
-                }
-            }
-        }
-    }
-    #[inline]
-    fn lo(&self) -> f64 {
-        *self
-    }
-    #[inline]
-    fn hi(&self) -> f64 {
-        *self
-    }
-    #[inline]
-    fn mid(&self) -> f64 {
-        *self
+    fn sum(self) -> R {
+        self.0.unwrap_or_else(R::zero)
     }
 }

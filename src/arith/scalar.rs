@@ -5,7 +5,7 @@
 //! Taylor series of it, dual numbers, and the recording type of the rigorous engine's tape.
 //! Each model is written once, generic over `T: Scalar<R>`.
 
-use super::exponent::Exponent;
+use super::real::Exponent;
 use super::real::Real;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};

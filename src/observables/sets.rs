@@ -30,7 +30,7 @@
 //! spread; the mean-value form brings single ranges to 1.00–1.4×.
 
 use crate::arith::Real;
-use crate::arith::dual::Dual;
+use crate::arith::jet::dual::Dual;
 use crate::engines::taylor::rec::Rec;
 use crate::engines::taylor::tape::{Tape, Workspace};
 use crate::engines::taylor::{RigorError, TaylorOptions, integrate_system};

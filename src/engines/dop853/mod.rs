@@ -29,7 +29,7 @@ pub mod tableau;
 
 pub use dense::DenseStep;
 
-use crate::arith::fastpow::Power;
+use crate::arith::float::fastpow::Power;
 use std::sync::LazyLock;
 use tableau::{A, B, C, D, E3, E5, N_STAGES, N_STAGES_EXTENDED};
 
@@ -40,7 +40,7 @@ const MIN_FACTOR: f64 = 0.2;
 /// Largest allowed step-size ratio `h_new/h` (SciPy `MAX_FACTOR`).
 const MAX_FACTOR: f64 = 10.0;
 /// Controller exponent `−1/(q + 1)` with `q = 7`, the order of the error estimator
-/// (`err^(−1/8)` by [`crate::arith::fastpow`], a few ulps: the libm `powf` was 7% of a CoR's
+/// (`err^(−1/8)` by [`crate::arith::float::fastpow`], a few ulps: the libm `powf` was 7% of a CoR's
 /// instructions; the step sequences of the SciPy reference tests are unchanged).
 const ERROR_EXPONENT: f64 = -1.0 / 8.0;
 /// Below this error norm the step-size factor is at least [`CAPPED_FACTOR`]:

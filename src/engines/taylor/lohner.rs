@@ -18,7 +18,7 @@
 //! arithmetic and e = ‖E‖_∞ < 1, Q⁻¹ = (I − E)⁻¹R and every entry of Q⁻¹ − R is bounded by
 //! ‖(I − E)⁻¹ − I‖_∞‖R‖_∞ ≤ e/(1 − e)·‖R‖_∞ (Neumann series).
 
-use crate::arith::dot::interval_dot;
+use crate::arith::interval::dot::interval_dot;
 use inari::{Interval, const_interval};
 
 const ZERO: Interval = const_interval!(0.0, 0.0);

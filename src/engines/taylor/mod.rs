@@ -3,11 +3,11 @@
 //! Proves enclosures of the solution of a collision model, of T_s and of e: the true value is
 //! inside every printed interval, with rounding and truncation (Lagrange remainders over
 //! validated a-priori enclosures) accounted for. Rounding: inari's directed rounding at the
-//! boundaries; inside the jets (the hot loops) [`crate::arith::ulp::Ulp`] intervals, whose
+//! boundaries; inside the jets (the hot loops) [`crate::arith::interval::ulp::Ulp`] intervals, whose
 //! directed rounding comes from exact error terms (TwoSum, FMA residuals) instead of
-//! rounding-mode switches, and sums of products by [`crate::arith::dot`] with a proved error
+//! rounding-mode switches, and sums of products by [`crate::arith::interval::dot`] with a proved error
 //! bound; the powers' exp and ln by Horner's scheme with a running error bound
-//! ([`crate::arith::elementary`]).
+//! ([`crate::arith::interval::elementary`]).
 //!
 //! Files, one per stage of a step (TaylorIntegration.jl's layout): [`tape`] (the model's own
 //! code recorded once, Taylor coefficients by recurrences), [`step`] (a Taylor step with a

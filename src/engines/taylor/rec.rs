@@ -17,7 +17,7 @@
 //! recorded on such nodes (the models use them on parameters only).
 
 use super::tape::Op;
-use crate::arith::dot::Dot;
+use crate::arith::Dot;
 use crate::arith::{Real, Scalar};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 use std::sync::{Arc, Mutex};

@@ -25,9 +25,9 @@ use super::flow::{Piece, point};
 use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
 use super::tape::{Tape, Workspace};
-use crate::arith::dot::interval_dot;
-use crate::arith::dual::Dual;
-use crate::arith::ulp::Ulp;
+use crate::arith::interval::dot::interval_dot;
+use crate::arith::interval::ulp::Ulp;
+use crate::arith::jet::dual::Dual;
 use inari::Interval;
 
 /// [0, h].
@@ -94,7 +94,7 @@ pub fn taylor_eval<const N: usize>(
         return [Interval::EMPTY; N];
     }
     // Horner in Ulp arithmetic (inari's enclosure without its rounding-mode switches)
-    let sk = Ulp::of(crate::arith::elementary::powi_nonneg(s, k as u32));
+    let sk = Ulp::of(crate::arith::interval::elementary::powi_nonneg(s, k as u32));
     let su = Ulp::of(s);
     std::array::from_fn(|i| {
         let mut p = Ulp::of(coefs[k - 1][i]);

@@ -2,7 +2,7 @@
 //!
 //! The model's field is evaluated once on [`Rec`] (a recording [`Scalar`]); the resulting list
 //! of operations is then replayed order by order (the jet recurrences of
-//! [`crate::arith::series`]), so the K Taylor coefficients of the solution through a box cost
+//! [`crate::arith::jet::series`]), so the K Taylor coefficients of the solution through a box cost
 //! O(K²) per operation, not O(K³) as re-evaluating the field on truncated series would
 //! (TaylorIntegration.jl's `jetcoeffs`, kv's psa). The model is written once: the tape is its
 //! code, run on another number type.
@@ -16,7 +16,7 @@
 pub use super::rec::Rec;
 use super::rec::Recorder;
 use crate::arith::Real;
-use crate::arith::series::{div_k, exp_log_k, log_k, mul_k, pow_factors, pow_k};
+use crate::arith::jet::series::{div_k, exp_log_k, log_k, mul_k, pow_factors, pow_k};
 use std::sync::{Arc, Mutex};
 
 /// One recorded operation; operands are indices of earlier nodes, constants index `consts`.
@@ -755,7 +755,7 @@ impl<R: Real> Workspace<R> {
 mod tests {
     use super::*;
     use crate::arith::Scalar;
-    use crate::arith::series::Series;
+    use crate::arith::jet::series::Series;
     use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
     use inari::Interval;
 
@@ -859,12 +859,12 @@ mod tests {
         }
     }
 
-    /// The jets the engine runs on [`Ulp`](crate::arith::ulp::Ulp) intervals enclose the same
+    /// The jets the engine runs on [`Ulp`](crate::arith::interval::ulp::Ulp) intervals enclose the same
     /// coefficients as those on inari intervals (endpoints within one ulp; equal almost always),
     /// and both enclose the f64 jet, at random thin points and small boxes of both models.
     #[test]
     fn ulp_jets_match_inari_jets() {
-        use crate::arith::ulp::Ulp;
+        use crate::arith::interval::ulp::Ulp;
         use inari::Interval;
         fn check<M, const N: usize>(m: &M, mf: &impl CollisionModel<f64, N>, seed: u64)
         where

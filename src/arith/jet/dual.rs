@@ -16,9 +16,9 @@
 //! the rigorous engine) needs ln|a|: at a = 0 it is unbounded, and so is the result's
 //! derivative (an honest enclosure, never a wrong one).
 
-use super::dot::Dot;
-use super::real::Real;
-use super::scalar::Scalar;
+use crate::arith::Dot;
+use crate::arith::Real;
+use crate::arith::Scalar;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -317,7 +317,7 @@ mod tests {
     /// exactly representable values.
     #[test]
     fn three_way_terms_of_duals_follow_the_product_rule() {
-        use crate::arith::dot::Dot;
+        use crate::arith::Dot;
         use inari::Interval;
         let p = |x: f64| Interval::try_from((x, x)).unwrap();
         let dual = |v: f64, d0: f64, d1: f64| Dual::<Interval, 2> {

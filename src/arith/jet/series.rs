@@ -21,9 +21,9 @@
 //! integer powers |w|^(q−1)w = w^q and even |w|^q = w^q are analytic everywhere and are
 //! expanded by products.
 
-use super::dot::Dot;
-use super::real::Real;
-use super::scalar::Scalar;
+use crate::arith::Dot;
+use crate::arith::Real;
+use crate::arith::Scalar;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// c_k of c = a·b.

@@ -3,8 +3,14 @@
 //! Decimal input is enclosed as written (inari parses `"[0.632]"` to the tightest interval
 //! containing the decimal 0.632), never rounded to a double first.
 
-use super::real::Real;
+pub mod dot;
+pub mod elementary;
+pub mod ulp;
+mod ulp_real;
+
+use crate::arith::real::Real;
 use inari::{Interval, const_interval};
+use ulp::int_op_bounds;
 
 /// [0, +∞), the domain of `pow`.
 const NONNEG: Interval = const_interval!(0.0, f64::INFINITY);
@@ -57,43 +63,9 @@ fn spow_at(a: f64, q: Interval, upper: bool) -> f64 {
     }
 }
 
-/// x^q for x ≥ 0: the fast enclosure of [`super::elementary::pow`], else inari's (MPFR).
+/// x^q for x ≥ 0: the fast enclosure of [`elementary::pow`], else inari's (MPFR).
 fn power(x: Interval, q: Interval) -> Interval {
-    super::elementary::pow(x, q).unwrap_or_else(|| Interval::pow(x, q))
-}
-
-/// Below 2^−969 a product's or quotient's residual may not be representable: the nearest
-/// result is then bracketed by its neighbours (its error is below one spacing).
-const RESIDUAL_EXACT: f64 = 2.004168360008973e-292; // 2^-969
-
-/// The nearest value p of x·k (`div`: x/k) and which side of it the exact value lies on, from
-/// the exact residual (FMA: x·k − p, or x − p·k for a quotient, both representable above
-/// 2^−969); returns (lower, upper) bounds, or None when not finite.
-#[inline]
-pub(crate) fn int_op_bounds(x: f64, k: f64, div: bool) -> Option<(f64, f64)> {
-    let p = if div { x / k } else { x * k };
-    if !p.is_finite() || !x.is_finite() {
-        return None;
-    }
-    if x == 0.0 {
-        return Some((0.0, 0.0));
-    }
-    if p.abs() < RESIDUAL_EXACT {
-        return Some((p.next_down(), p.next_up()));
-    }
-    // sign of (exact − p): for a product x·k − p; for a quotient (x − p·k)/k
-    let r = if div {
-        (-p).mul_add(k, x) * k.signum()
-    } else {
-        x.mul_add(k, -p)
-    };
-    Some(if r > 0.0 {
-        (p, p.next_up())
-    } else if r < 0.0 {
-        (p.next_down(), p)
-    } else {
-        (p, p)
-    })
+    elementary::pow(x, q).unwrap_or_else(|| Interval::pow(x, q))
 }
 
 /// [a, b]·k or [a, b]/k for an exact integer k ≠ 0 (k = 0 only for a product), rounded
@@ -123,7 +95,7 @@ fn int_op(x: Interval, k: i64, div: bool) -> Interval {
 }
 
 impl Real for Interval {
-    type Dot = super::dot::IntervalDot;
+    type Dot = dot::IntervalDot;
     type Prepared = ();
     fn prepare_exponent(_: &Self) {}
     fn from_int(k: i64) -> Self {
@@ -142,13 +114,13 @@ impl Real for Interval {
     fn div_int(&self, k: i64) -> Self {
         int_op(*self, k, true)
     }
-    /// The product in [`super::ulp::Ulp`] arithmetic (the same enclosure, no mode switches).
+    /// The product in [`ulp::Ulp`] arithmetic (the same enclosure, no mode switches).
     #[inline]
     fn mul_constant(&self, c: &Self) -> Self {
         if self.is_empty() || c.is_empty() {
             return Interval::EMPTY;
         }
-        (super::ulp::Ulp::of(*self) * super::ulp::Ulp::of(*c)).interval()
+        (ulp::Ulp::of(*self) * ulp::Ulp::of(*c)).interval()
     }
     fn parse_decimal(s: &str) -> Result<Self, String> {
         enclose_decimal_or_range(s)
@@ -163,7 +135,7 @@ impl Real for Interval {
         Interval::sqrt(*self)
     }
     fn ln(&self) -> Self {
-        super::elementary::ln(*self)
+        elementary::ln(*self)
     }
     /// Away from 0 the product; where |w| reaches 0, g(y) = y^q ln y over y ∈ [0, |w|]:
     /// g ≥ −1/(e q) (its minimum, at y = e^(−1/q)), g ≤ 0 for y ≤ 1 and g ≤ |w|^q ln|w| above.
@@ -339,7 +311,7 @@ mod tests {
                     q(m.inf()) <= exact_mul && exact_mul <= q(m.sup()),
                     "{x:e}·{k}: {m:?}"
                 );
-                let ulps = if m.mag() < RESIDUAL_EXACT { 2 } else { 1 };
+                let ulps = if m.mag() < ulp::RESIDUAL_EXACT { 2 } else { 1 };
                 let mut hi = m.inf();
                 (0..ulps).for_each(|_| hi = hi.next_up());
                 assert!(m.sup() <= hi, "{x:e}·{k}: {m:?}");

@@ -1,5 +1,5 @@
 //! Interval arithmetic with directed rounding recovered from round-to-nearest, for short hot
-//! loops (the series of [`super::elementary`], Horner evaluation of Taylor polynomials).
+//! loops (the series of [`crate::arith::interval::elementary`], Horner evaluation of Taylor polynomials).
 //!
 //! inari rounds each endpoint in the right direction by switching the rounding mode (MXCSR)
 //! around every operation; that switch costs more than the arithmetic. Here each endpoint is
@@ -16,7 +16,6 @@
 //!
 //! So results equal inari's (tests below check enclosure of the exact rational results).
 
-use super::real::Real;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -77,7 +76,7 @@ impl Ulp {
 }
 
 /// 2^−969: above it a product's FMA residual is exact.
-const RESIDUAL_EXACT: f64 = 2.004168360008973e-292;
+pub(crate) const RESIDUAL_EXACT: f64 = 2.004168360008973e-292;
 
 /// a + b rounded towards −∞ (`up = false`) or +∞.
 #[inline]
@@ -264,89 +263,11 @@ impl Div for Ulp {
     }
 }
 
-/// [`Ulp`] as a coefficient field of the rigorous engine's jets: +, −, ×, ÷ and integer
-/// scalings here; powers, |·| and √ through inari's enclosures ([`super::interval`]).
-impl Real for Ulp {
-    type Dot = super::dot::UlpDot;
-    type Prepared = ();
-    fn prepare_exponent(_: &Self) {}
-    fn from_int(k: i64) -> Self {
-        let x = k as f64;
-        assert!(x as i64 == k, "integer constant {k} is not exact in f64");
-        Self::point(x)
-    }
-    fn from_exact_f64(x: f64) -> Self {
-        Self::point(x)
-    }
-    fn parse_decimal(s: &str) -> Result<Self, String> {
-        Interval::parse_decimal(s).map(Self::of)
-    }
-    fn unbounded() -> Self {
-        Self::ENTIRE
-    }
-    #[inline]
-    fn mul_int(&self, k: i64) -> Self {
-        self.int_op(k, false)
-    }
-    #[inline]
-    fn div_int(&self, k: i64) -> Self {
-        self.int_op(k, true)
-    }
-    fn abs(&self) -> Self {
-        if self.lo >= 0.0 {
-            *self
-        } else if self.hi <= 0.0 {
-            -*self
-        } else {
-            Self {
-                lo: 0.0,
-                hi: self.hi.max(-self.lo),
-            }
-        }
-    }
-    fn sqrt(&self) -> Self {
-        Self::of(Real::sqrt(&self.interval()))
-    }
-    fn ln(&self) -> Self {
-        Self::of(Real::ln(&self.interval()))
-    }
-    fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
-        Self::of(<Interval as Real>::pow_ln(
-            &w.interval(),
-            &q.interval(),
-            signed,
-        ))
-    }
-    fn sgn(&self) -> Self {
-        Self::of(Real::sgn(&self.interval()))
-    }
-    fn pow(&self, y: &Self) -> Self {
-        Self::of(Real::pow(&self.interval(), &y.interval()))
-    }
-    fn spow(&self, q: &Self) -> Self {
-        Self::of(Real::spow(&self.interval(), &q.interval()))
-    }
-    fn apow(&self, q: &Self) -> Self {
-        Self::of(Real::apow(&self.interval(), &q.interval()))
-    }
-    #[inline]
-    fn lo(&self) -> f64 {
-        self.lo
-    }
-    #[inline]
-    fn hi(&self) -> f64 {
-        self.hi
-    }
-    fn mid(&self) -> f64 {
-        self.interval().mid()
-    }
-}
-
 impl Ulp {
     /// x·k or x/k for an exact integer k (k ≠ 0 for a quotient) by the exact-residual method
-    /// of [`super::interval`].
+    /// of [`super`].
     #[inline]
-    fn int_op(self, k: i64, div: bool) -> Self {
+    pub(crate) fn int_op(self, k: i64, div: bool) -> Self {
         if k == 0 && !div {
             return Self::point(0.0);
         }
@@ -356,10 +277,7 @@ impl Ulp {
         } else {
             (self.hi, self.lo)
         };
-        match (
-            super::interval::int_op_bounds(a, kf, div),
-            super::interval::int_op_bounds(b, kf, div),
-        ) {
+        match (int_op_bounds(a, kf, div), int_op_bounds(b, kf, div)) {
             (Some((lo, _)), Some((_, hi))) => Self { lo, hi },
             _ => {
                 let ki = Self::point(kf);
@@ -369,9 +287,40 @@ impl Ulp {
     }
 }
 
+/// The nearest value p of x·k (`div`: x/k) and which side of it the exact value lies on, from
+/// the exact residual (FMA: x·k − p, or x − p·k for a quotient, both representable above
+/// 2^−969); returns (lower, upper) bounds, or None when not finite.
+#[inline]
+pub(crate) fn int_op_bounds(x: f64, k: f64, div: bool) -> Option<(f64, f64)> {
+    let p = if div { x / k } else { x * k };
+    if !p.is_finite() || !x.is_finite() {
+        return None;
+    }
+    if x == 0.0 {
+        return Some((0.0, 0.0));
+    }
+    if p.abs() < RESIDUAL_EXACT {
+        return Some((p.next_down(), p.next_up()));
+    }
+    // sign of (exact − p): for a product x·k − p; for a quotient (x − p·k)/k
+    let r = if div {
+        (-p).mul_add(k, x) * k.signum()
+    } else {
+        x.mul_add(k, -p)
+    };
+    Some(if r > 0.0 {
+        (p, p.next_up())
+    } else if r < 0.0 {
+        (p.next_down(), p)
+    } else {
+        (p, p)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::arith::Real;
     use rug::Rational;
 
     fn q(x: f64) -> Rational {
@@ -573,7 +522,7 @@ mod tests {
     }
 
     /// x·k and x/k for an integer k enclose the exact rational ends, equal the inari
-    /// implementation ([`super::super::interval`]), and x·0 = 0.
+    /// implementation ([`super`]), and x·0 = 0.
     #[test]
     fn integer_scalings_enclose_the_exact_value() {
         let mut seed = 0x853c49e6748fea9b_u64;

@@ -10,50 +10,8 @@
 //! For duals the accumulator is one per component.
 
 use super::ulp::Ulp;
+use crate::arith::Dot;
 use inari::Interval;
-
-/// An accumulator of Σ aⱼ·bⱼ over a number type `R`.
-pub trait Dot<R>: Sized {
-    /// The empty sum.
-    fn new() -> Self;
-    /// Adds a·b.
-    fn add_prod(&mut self, a: &R, b: &R);
-    /// Adds f·a·b for a constant f of the type (a factor of a recurrence, such as the power
-    /// recurrence's q(k − j) − j). Accumulators of interval types override it to take the
-    /// three-way product in one pass (no directed rounding of f·a).
-    #[inline]
-    fn add_prod3(&mut self, f: &R, a: &R, b: &R)
-    where
-        R: super::Real,
-    {
-        self.add_prod(&a.mul_constant(f), b);
-    }
-    /// The sum (for an interval type: an enclosure of the exact sum of the exact products).
-    fn sum(self) -> R;
-}
-
-/// The plain f64 sum, rounded to nearest term by term (as `s = s + a * b`).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct F64Dot(f64);
-
-impl Dot<f64> for F64Dot {
-    #[inline]
-    fn new() -> Self {
-        Self(0.0)
-    }
-    #[inline]
-    fn add_prod(&mut self, a: &f64, b: &f64) {
-        self.0 += a * b;
-    }
-    #[inline]
-    fn add_prod3(&mut self, f: &f64, a: &f64, b: &f64) {
-        self.0 += f * a * b;
-    }
-    #[inline]
-    fn sum(self) -> f64 {
-        self.0
-    }
-}
 
 /// 2^−53, the unit roundoff of round-to-nearest binary64.
 const U: f64 = f64::EPSILON / 2.0;
@@ -272,29 +230,10 @@ impl Dot<Ulp> for UlpDot {
     }
 }
 
-/// A sum of products in a type's own arithmetic (for types without a faster accumulator).
-#[derive(Clone, Debug)]
-pub struct PlainDot<R>(Option<R>);
-
-impl<R: super::Real> Dot<R> for PlainDot<R> {
-    fn new() -> Self {
-        Self(None)
-    }
-    fn add_prod(&mut self, a: &R, b: &R) {
-        let p = a.clone() * b.clone();
-        self.0 = Some(match self.0.take() {
-            Some(s) => s + p,
-            None => p,
-        });
-    }
-    fn sum(self) -> R {
-        self.0.unwrap_or_else(R::zero)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::arith::PlainDot;
     use rug::Rational;
 
     /// The exact interval Σ [aⱼ]·[bⱼ] (finite endpoints), as rationals.

@@ -30,7 +30,7 @@
 //! when the model is built, through [`super::Exponent`]), so the right-hand side reads its
 //! tables with no lookup by q. A table is a pure function of q: a value never depends on
 //! what else the process computed. Only the f64 engine uses this: interval powers are
-//! enclosures ([`super::elementary`]).
+//! enclosures ([`crate::arith::interval::elementary`]).
 
 use std::collections::HashMap;
 use std::sync::{Arc, LazyLock, Mutex};
