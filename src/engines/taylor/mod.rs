@@ -19,6 +19,7 @@ pub mod flow;
 pub mod lohner;
 pub mod newton;
 pub mod rec;
+pub mod singular;
 pub mod step;
 pub mod tape;
 
@@ -68,6 +69,10 @@ pub struct TaylorOptions {
     /// Lohner's QR method: carry the enclosure as a parallelepiped c + A·r between Taylor steps
     /// (see [`lohner`]); off: a box re-wrapped at every step (the mean-value form alone).
     pub qr: bool,
+    /// Cross a branch point (a switching component of a power reaching 0) by one step in the
+    /// crossing variable ([`singular`]) instead of geometrically shrinking Taylor steps and a
+    /// low-order step; off: the latter only.
+    pub singular: bool,
 }
 
 impl Default for TaylorOptions {
@@ -84,6 +89,7 @@ impl Default for TaylorOptions {
             cross_tol: 1e-16,
             event_slack: 1e-3,
             qr: true,
+            singular: true,
         }
     }
 }
@@ -167,6 +173,10 @@ pub fn integrate_system<const N: usize>(
 /// keeping the parallelepiped changed their e widths by 0.77–1.25× (no gain on balance).
 const WIDE_SET: f64 = 1e-10;
 
+/// A singular step is tried once a branch point is this near (the time for its component to
+/// reach 0 at its fastest).
+const SINGULAR_NEAR: f64 = 2e-3;
+
 fn integrate_tape<const N: usize>(
     tape: &Tape<Interval, N>,
     x0: [Interval; N],
@@ -193,6 +203,19 @@ fn integrate_tape<const N: usize>(
     };
     let mut ws = step::Workspaces::default();
     let mut ev_ws = Workspace::default();
+    // the singular step across branch points (point sets only: a wide set keeps its
+    // parallelepiped through the Taylor steps)
+    let sing_opts = singular::SingularOptions::default();
+    let sing_tape = if opts.singular {
+        singular::SingularTape::of(tape, &sing_opts)
+    } else {
+        None
+    };
+    let sing_dual = sing_tape
+        .as_ref()
+        .map(|_| tape.map(|c| crate::arith::jet::dual::Dual::constant(*c)));
+    // after a refused singular step, the next try waits until the surface is this near
+    let mut sing_retry = f64::INFINITY;
     let mut x = x0;
     // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
     let mut rep: Option<lohner::Parallelepiped<N>> = None;
@@ -253,65 +276,102 @@ fn integrate_tape<const N: usize>(
         } else {
             kd
         };
-        let mut hm = h_max;
-        let taylor = loop {
-            match step::taylor_step(
-                &tapes,
-                &mut ws,
-                t,
-                &x,
-                opts.order,
-                kd,
-                opts.tol.max(1e-4 * w),
-                hm,
-                opts.min_taylor_step,
-                &side,
-                if opts.qr { rep.as_ref() } else { None },
-            ) {
-                Err(_) => break None,
-                Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
-                    step::KinkCut::Whole => break Some(o),
-                    step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
-                        // the step again, ending at the cut: its end set stays a
-                        // parallelepiped (a truncated piece gives a box)
-                        if o.rep.is_some()
-                            && w > WIDE_SET
-                            && let Ok(o2) = step::taylor_step(
-                                &tapes,
-                                &mut ws,
-                                t,
-                                &x,
-                                opts.order,
-                                kd,
-                                opts.tol.max(1e-4 * w),
-                                tc - t,
-                                opts.min_taylor_step,
-                                &side,
-                                rep.as_ref(),
+        // one branch point near and approached: across it in one singular step
+        let mut near = switching
+            .iter()
+            .filter(|i| !tape.kinks().contains(i))
+            .filter_map(|&i| {
+                let toward = (x[i].inf() > 0.0 && f[i].inf() < 0.0)
+                    || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
+                toward.then(|| (i, x[i].mig() / f[i].mag()))
+            })
+            .filter(|&(_, h)| h < SINGULAR_NEAR);
+        let singular_out = match (&sing_tape, near.next(), near.next()) {
+            (Some(st), Some((i, h)), None) if w <= WIDE_SET && h < sing_retry => {
+                let dual = sing_dual.as_ref().expect("made with the singular tape");
+                let r = if opts.qr { rep.as_ref() } else { None };
+                let o =
+                    singular::crossing_step(st, tape, dual, t, &x, r, i, &sing_opts).filter(|o| {
+                        // taken when it adds little width (the expansions' remainder grows
+                        // like δ^M: too far from the surface the step is refused, and tried
+                        // again nearer)
+                        width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15)
+                            && matches!(
+                                event::scan_piece(tape, &mut ev_ws, &o.piece),
+                                event::Verdict::Cleared
                             )
-                            && matches!(step::cut_at_kinks(tape, &o2, &side), step::KinkCut::Whole)
-                        {
-                            break Some(o2);
+                    });
+                sing_retry = if o.is_some() { f64::INFINITY } else { h / 4.0 };
+                o
+            }
+            _ => None,
+        };
+        let mut hm = h_max;
+        let taylor = if singular_out.is_some() {
+            None
+        } else {
+            loop {
+                match step::taylor_step(
+                    &tapes,
+                    &mut ws,
+                    t,
+                    &x,
+                    opts.order,
+                    kd,
+                    opts.tol.max(1e-4 * w),
+                    hm,
+                    opts.min_taylor_step,
+                    &side,
+                    if opts.qr { rep.as_ref() } else { None },
+                ) {
+                    Err(_) => break None,
+                    Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
+                        step::KinkCut::Whole => break Some(o),
+                        step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
+                            // the step again, ending at the cut: its end set stays a
+                            // parallelepiped (a truncated piece gives a box)
+                            if o.rep.is_some()
+                                && w > WIDE_SET
+                                && let Ok(o2) = step::taylor_step(
+                                    &tapes,
+                                    &mut ws,
+                                    t,
+                                    &x,
+                                    opts.order,
+                                    kd,
+                                    opts.tol.max(1e-4 * w),
+                                    tc - t,
+                                    opts.min_taylor_step,
+                                    &side,
+                                    rep.as_ref(),
+                                )
+                                && matches!(
+                                    step::cut_at_kinks(tape, &o2, &side),
+                                    step::KinkCut::Whole
+                                )
+                            {
+                                break Some(o2);
+                            }
+                            o.piece.truncate(tc);
+                            o.x1 = o.piece.enclose(flow::point(tc));
+                            o.rep = None;
+                            break Some(o);
                         }
-                        o.piece.truncate(tc);
-                        o.x1 = o.piece.enclose(flow::point(tc));
-                        o.rep = None;
-                        break Some(o);
-                    }
-                    // the crossing is right ahead: a low-order step takes it
-                    step::KinkCut::Before(_) => break None,
-                    step::KinkCut::Unresolved => {
-                        hm = 0.5 * (o.piece.t1() - t);
-                        if hm < opts.min_taylor_step {
-                            break None;
+                        // the crossing is right ahead: a low-order step takes it
+                        step::KinkCut::Before(_) => break None,
+                        step::KinkCut::Unresolved => {
+                            hm = 0.5 * (o.piece.t1() - t);
+                            if hm < opts.min_taylor_step {
+                                break None;
+                            }
                         }
-                    }
-                },
+                    },
+                }
             }
         };
-        let out = match taylor {
-            Some(o) => o,
-            None => {
+        let out = match (taylor, singular_out) {
+            (Some(o), _) | (None, Some(o)) => o,
+            (None, None) => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
                 let mut h = h_low * 4.0;
                 loop {

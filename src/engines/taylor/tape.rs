@@ -306,6 +306,27 @@ impl<R: Real, const N: usize> Tape<R, N> {
         }
     }
 
+    /// The constant exponents q of the tape's powers |w|^(q−1)w and |w|^q (duplicates
+    /// included): the generators of the singular step's expansions.
+    pub fn power_exponents(&self) -> Vec<R> {
+        self.ops
+            .iter()
+            .filter_map(|op| match *op {
+                Op::Spow(_, q) | Op::Apow(_, q) | Op::Twin(_, q, _, _) => {
+                    Some(self.consts[q].clone())
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// True when the tape has powers with a variable exponent (a parameter given as a range).
+    pub fn has_variable_exponents(&self) -> bool {
+        self.ops
+            .iter()
+            .any(|op| matches!(op, Op::SpowV(..) | Op::ApowV(..)))
+    }
+
     /// The parameter components: constant in time (see [`Tape::record_with`]).
     pub fn params(&self) -> &[usize] {
         &self.params

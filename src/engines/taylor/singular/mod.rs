@@ -1,0 +1,396 @@
+//! Across a branch point in one step: the crossing variable as the independent variable.
+//!
+//! Near a time t_c where one switching component w (Z of eq:BWSHCCM_nd, Y or Z of
+//! eq:BWMCM_nd) passes through 0 with ẇ ≠ 0, every other component is analytic in the state and
+//! the field's only singular terms are powers of w: |w|^(q−1)w and |w|^q with the model's
+//! exponents q (n, p, p − 1, …). With w = σu (σ = ±1 the side, u = |w| ≥ 0) as the independent
+//! variable, the remaining components y and the time t solve
+//!
+//! ```text
+//! dy/du = σ f_y(y, σu) / f_w(y, σu),      dt/du = σ / f_w(y, σu),
+//! ```
+//!
+//! whose right-hand side is analytic in y and a combination of u, u^n, u^p, … in u. The solution
+//! is therefore a convergent series in the powers u^α, α = k₀ + k₁q₁ + k₂q₂ + … (Puiseux-type;
+//! [`puiseux`]), which the Taylor steps in t cannot represent: they shrink geometrically towards
+//! t_c (about 40 steps on each side for the Table 1 sets, the last ~1e-8 long) and cross it
+//! with a low-order step whose width grows like h^(1+a).
+//!
+//! The step, from a box x₀ at t₀ with w(t₀) = σ_A u₀ (u₀ ∈ U₀ > 0) moving towards 0:
+//! 1. **Approach side** u ∈ [0, δ_A], δ_A = sup U₀: the fixed point of
+//!    T(y)(u) = y₀ + I(y)(u) − I(y)(U₀), I(y)(u) = ∫₀^u G(y(s), s) ds,
+//!    over generalized polynomials with remainder. A candidate set S (coefficient intervals and
+//!    a remainder) with T(S) ⊆ S contains the solution (Schauder; G is Lipschitz in y where
+//!    f_w ≠ 0 and the other switching components keep their signs, which the interval
+//!    operations check: otherwise they return unbounded values and the step is refused).
+//!    At u = 0 it gives the crossing state and t_c.
+//! 2. **Departure side** w = σ_B u, σ_B = −σ_A, u ∈ [0, δ_B]: T(y)(u) = y(t_c) + I(y)(u), the same
+//!    way.
+//! 3. **Exit at an exact time** t₁ (a double between t_c and t(δ_B)): t(u) is increasing, so
+//!    bisection on its enclosure brackets the u* with t(u*) = t₁, and the state there is
+//!    y([u_lo, u_hi]).
+//!
+//! The step is given to the rest of the engine as a low-order piece x₀ + τ·f(Y) over [t₀, t₁]
+//! (Y the hull of both sides' ranges, which contains the whole path), so that the event scan
+//! and dense output need nothing new; the step is taken only when that piece clears the
+//! separation condition.
+
+pub mod puiseux;
+
+use super::flow::{point, tau};
+use super::lohner::Parallelepiped;
+use super::step::{StepOut, low_order_step};
+use super::tape::Tape;
+use crate::arith::Real;
+use crate::arith::interval::dot::interval_dot;
+use crate::arith::jet::dual::Dual;
+use inari::{Interval, const_interval};
+use puiseux::{Basis, Ctx, Gts};
+use std::sync::Arc;
+
+const ZERO: Interval = const_interval!(0.0, 0.0);
+const ONE: Interval = const_interval!(1.0, 1.0);
+
+/// Tunables of the singular step.
+#[derive(Clone, Debug)]
+pub struct SingularOptions {
+    /// Exponent cut-off M of the expansions.
+    pub max_exp: f64,
+    /// Plain Picard iterations before the validation (each fixes the terms of at least one
+    /// more order).
+    pub iterations: usize,
+}
+
+impl Default for SingularOptions {
+    fn default() -> Self {
+        let env = |k: &str, d: f64| {
+            std::env::var(k)
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(d)
+        };
+        Self {
+            max_exp: env("BWCL_SING_M", 8.0),
+            iterations: env("BWCL_SING_IT", 10.0) as usize,
+        }
+    }
+}
+
+/// The tape over generalized polynomials and the exponents of its powers, made once per run.
+pub struct SingularTape<const N: usize> {
+    tape: Tape<Gts, N>,
+    basis: Arc<Basis>,
+}
+
+impl<const N: usize> SingularTape<N> {
+    /// `None` when the model has powers with a variable exponent (not expanded).
+    pub fn of(tape: &Tape<Interval, N>, opts: &SingularOptions) -> Option<Self> {
+        if tape.has_variable_exponents() {
+            return None;
+        }
+        let gens: Vec<Interval> = tape
+            .power_exponents()
+            .into_iter()
+            .filter(|q| q.inf() > 0.0)
+            .collect();
+        Some(Self {
+            tape: tape.map(|c| Gts::constant(*c)),
+            basis: Basis::new(&gens, opts.max_exp)?,
+        })
+    }
+}
+
+/// Where the fixed point's constant comes from.
+enum Start<'a> {
+    /// y(u₀) = y₀ for u₀ ∈ U₀ (the approach side).
+    At(&'a [Interval], Interval),
+    /// y(0) = y_c (the departure side).
+    Zero(&'a [Interval]),
+}
+
+/// y = (the components other than w, then t) as generalized polynomials on one side.
+struct Side {
+    y: Vec<Gts>,
+}
+
+/// The Picard operator of one side: T(y) = c + I(y) (see the module's documentation).
+fn picard<const N: usize>(
+    st: &SingularTape<N>,
+    ctx: &Arc<Ctx>,
+    sigma: i8,
+    w: usize,
+    y: &[Gts],
+    start: &Start,
+) -> Option<Vec<Gts>> {
+    let x: [Gts; N] = std::array::from_fn(|j| {
+        if j == w {
+            Gts::variable(ctx, sigma)
+        } else {
+            y[j].clone()
+        }
+    });
+    let f = st.tape.eval(&x);
+    let dt = Gts::from_int(sigma as i64) / f[w].clone();
+    if !dt.is_bounded() {
+        return None;
+    }
+    let mut out = Vec::with_capacity(N + 1);
+    for j in 0..=N {
+        if j == w {
+            out.push(Gts::constant_in(ctx, ZERO));
+            continue;
+        }
+        let g = if j == N {
+            dt.clone()
+        } else {
+            f[j].clone() * dt.clone()
+        };
+        let i = g.integral();
+        let c = match start {
+            Start::At(y0, u0) => y0[j] - i.eval(*u0),
+            Start::Zero(yc) => yc[j],
+        };
+        let yj = Gts::constant_in(ctx, c) + i;
+        if !yj.is_bounded() {
+            return None;
+        }
+        out.push(yj);
+    }
+    Some(out)
+}
+
+/// The validated solution of one side, or `None`.
+fn solve_side<const N: usize>(
+    st: &SingularTape<N>,
+    ctx: &Arc<Ctx>,
+    sigma: i8,
+    w: usize,
+    start: Start,
+    opts: &SingularOptions,
+) -> Option<Side> {
+    let c: Vec<Interval> = match &start {
+        Start::At(y0, _) | Start::Zero(y0) => y0.to_vec(),
+    };
+    let mut y: Vec<Gts> = c.iter().map(|&ci| Gts::constant_in(ctx, ci)).collect();
+    for _ in 0..opts.iterations {
+        y = picard(st, ctx, sigma, w, &y, &start)?;
+    }
+    // T(S) ⊆ S for an inflated candidate S
+    let mut s: Vec<Gts> = y.iter().map(|g| g.inflate(0.5, 1e-15, 1e-300)).collect();
+    for _ in 0..8 {
+        let ts = picard(st, ctx, sigma, w, &s, &start)?;
+        if ts
+            .iter()
+            .zip(&s)
+            .enumerate()
+            .all(|(j, (a, b))| j == w || a.subset_of(b))
+        {
+            // T(S) ⊆ S: the solution is in T(S), and in every further image (T contracts by
+            // about δ·Lip: each image sheds most of the candidate's inflation)
+            let mut y = ts;
+            for _ in 0..2 {
+                y = picard(st, ctx, sigma, w, &y, &start)?;
+            }
+            return Some(Side { y });
+        }
+        s = ts
+            .iter()
+            .zip(&s)
+            .map(|(a, b)| {
+                // the next candidate covers both (terms new in the image included)
+                let h = hull(a, b);
+                h.inflate(0.5, 1e-15, 1e-300)
+            })
+            .collect();
+    }
+    None
+}
+
+/// A value whose every coefficient and remainder contains both operands'.
+fn hull(a: &Gts, b: &Gts) -> Gts {
+    // a + (b − a)·0 keeps a's keys and b's; take coefficientwise hulls by adding the difference
+    // of the two as an interval [0, 1] multiple: a + [0, 1](b − a) ⊇ a ∪ b coefficientwise
+    let d = b.clone() - a.clone();
+    a.clone() + d * Gts::constant(const_interval!(0.0, 1.0))
+}
+
+/// The flow of the point `x0` (a box of tiny width) across the zero of component `w`: the
+/// exit time t₁ (`at`, or one chosen just before t(δ_B)) and the state there, or `None` (see
+/// [`crossing_step`]).
+fn cross_point<const N: usize>(
+    st: &SingularTape<N>,
+    tape: &Tape<Interval, N>,
+    t0: f64,
+    x0: &[Interval; N],
+    w: usize,
+    opts: &SingularOptions,
+    at: Option<f64>,
+) -> Option<(f64, [Interval; N])> {
+    let sa = Real::sign(&x0[w])?;
+    let f0 = tape.eval(x0);
+    if Real::sign(&f0[w]) != Some(-sa) {
+        return None;
+    }
+    let u0 = if sa > 0 { x0[w] } else { -x0[w] };
+    let delta_a = u0.sup();
+    let ctx_a = Ctx::new(&st.basis, delta_a)?;
+    let y0: Vec<Interval> = (0..=N)
+        .map(|j| if j == N { point(t0) } else { x0[j] })
+        .collect();
+    let a = solve_side(st, &ctx_a, sa, w, Start::At(&y0, u0), opts)?;
+    let yc: Vec<Interval> = a.y.iter().map(|g| g.eval(ZERO)).collect();
+    let sb = -sa;
+    // a given exit time may lie a little beyond this point's own t(δ_A)
+    let delta_b = if at.is_some() { 1.5 * delta_a } else { delta_a };
+    let ctx_b = Ctx::new(&st.basis, delta_b)?;
+    let b = solve_side(st, &ctx_b, sb, w, Start::Zero(&yc), opts)?;
+    // the exit time: t(δ_B) > t1 > t_c
+    let tb = &b.y[N];
+    let t_end = tb.eval(point(delta_b)).inf();
+    let t1 = at.unwrap_or(t_end.next_down());
+    if !(t1 > yc[N].sup() && t1 > t0 && t1 < t_end) {
+        return None;
+    }
+    // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi
+    let (mut lo, mut hi) = (0.0_f64, delta_b);
+    for _ in 0..200 {
+        let m = 0.5 * (lo + hi);
+        if m <= lo || m >= hi {
+            break;
+        }
+        if tb.eval(point(m)).sup() < t1 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    let (mut lo2, mut hi2) = (lo, delta_b);
+    for _ in 0..200 {
+        let m = 0.5 * (lo2 + hi2);
+        if m <= lo2 || m >= hi2 {
+            break;
+        }
+        if tb.eval(point(m)).inf() > t1 {
+            hi2 = m;
+        } else {
+            lo2 = m;
+        }
+    }
+    let ustar = Interval::try_from((lo, hi2)).ok()?;
+    let x1: [Interval; N] = std::array::from_fn(|j| {
+        if j == w {
+            if sb > 0 { ustar } else { -ustar }
+        } else {
+            b.y[j].eval(ustar)
+        }
+    });
+    if std::env::var_os("BWCL_TRACE_SING").is_some() {
+        let rems = |s: &Side| {
+            s.y.iter()
+                .map(|g| format!("{:.1e}/{}", g.remainder().wid(), g.terms().len()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        eprintln!(
+            "singular: t0 {t0} t1 {t1} δ {delta_a:.3e} u* width {:.1e}; remainders/terms A {} B {}",
+            ustar.wid(),
+            rems(&a),
+            rems(&b)
+        );
+    }
+    Some((t1, x1))
+}
+
+/// A step across the zero of component `w` from the set at t0 (the parallelepiped `rep`, or
+/// the box `x0`), or `None` when it cannot be proved (a component other than w reaches a
+/// switching surface, ẇ reaches 0, the expansions do not validate, the exit time is not after
+/// t_c, or the field's Jacobian is unbounded on the way).
+///
+/// The set is carried by the mean-value form, as a Taylor step carries it (Lohner): with c the
+/// set's centre, φ(x) ∈ φ(c) + J·(x − c), where φ(c) is the point's flow by the expansions
+/// ([`cross_point`]) and J encloses the flow's Jacobian over the set from the variational
+/// equation Φ′ = Df(x(t))Φ, Φ(t₀) = I, on the a-priori box Y ⊇ x(t) of a low-order step:
+/// ‖Φ(t) − I‖_∞ ≤ e^(‖Df(Y)‖_∞ τ) − 1 (Grönwall), then Φ(t₁) ∈ I + τ₁·Df(Y)·(I + [−ε, ε]).
+/// Df(Y) is evaluated on duals; at a kink of |·| its derivative is [−1, 1] (Clarke's), so the
+/// inclusion holds for the Lipschitz fields of n = 1 too. The low-order step also gives the
+/// piece x₀ + τ·f(Y) that the event scan and the dense output use.
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
+pub fn crossing_step<const N: usize>(
+    st: &SingularTape<N>,
+    tape: &Tape<Interval, N>,
+    dual: &Tape<Dual<Interval, N>, N>,
+    t0: f64,
+    x0: &[Interval; N],
+    rep: Option<&Parallelepiped<N>>,
+    w: usize,
+    opts: &SingularOptions,
+) -> Option<StepOut<N>> {
+    let clock = std::time::Instant::now();
+    let trace = std::env::var_os("BWCL_TRACE_SING").is_some();
+    let p = rep.cloned().unwrap_or_else(|| Parallelepiped::from_box(x0));
+    let c: [Interval; N] = p.c.map(point);
+    let cp = cross_point(st, tape, t0, &c, w, opts, None);
+    if trace {
+        eprintln!(
+            "singular attempt at t0 {t0}: {} in {:?}",
+            if cp.is_some() { "crossed" } else { "refused" },
+            clock.elapsed()
+        );
+    }
+    let (t1, z) = cp?;
+    let lo = low_order_step(tape, t0, x0, t1 - t0)?;
+    let y = lo.apriori;
+    let fd = dual.eval(&Dual::seed(&y));
+    let d: [[Interval; N]; N] = std::array::from_fn(|i| fd[i].d);
+    if !d.iter().flatten().all(|x| x.is_common_interval()) {
+        return None;
+    }
+    let tau1 = tau(point(t1), t0);
+    let norm = d
+        .iter()
+        .map(|row| row.iter().fold(ZERO, |s, x| s + point(x.mag())))
+        .fold(ZERO, |m, s| point(m.sup().max(s.sup())));
+    let eps = ((norm * tau1).exp() - ONE).sup();
+    if eps.is_nan() || eps >= 1.0 {
+        return None;
+    }
+    let ball = Interval::try_from((-eps, eps)).ok()?;
+    let jy: [[Interval; N]; N] =
+        std::array::from_fn(|i| std::array::from_fn(|j| if i == j { ONE + ball } else { ball }));
+    let mut jac = [[ZERO; N]; N];
+    for i in 0..N {
+        for j in 0..N {
+            let s = interval_dot((0..N).map(|l| (d[i][l], jy[l][j])));
+            jac[i][j] = if i == j { ONE } else { ZERO } + tau1 * s;
+        }
+    }
+    // B = J·A
+    let b: [[Interval; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| interval_dot((0..N).map(|l| (jac[i][l], point(p.a[l][j])))))
+    });
+    let rep1 = Parallelepiped::advance(&z, &b, &p.r);
+    let x1: [Interval; N] = match &rep1 {
+        Some(r) => {
+            let h = r.hull();
+            std::array::from_fn(|i| h[i].intersection(lo.x1[i]))
+        }
+        None => {
+            let off = std::array::from_fn::<Interval, N, _>(|i| {
+                interval_dot((0..N).map(|j| (b[i][j], p.r[j])))
+            });
+            std::array::from_fn(|i| (z[i] + off[i]).intersection(lo.x1[i]))
+        }
+    };
+    if x1.iter().any(|c| c.is_empty()) {
+        return None;
+    }
+    Some(StepOut {
+        piece: lo.piece,
+        x1,
+        apriori: y,
+        rep: rep1,
+    })
+}
+
+#[cfg(test)]
+mod tests;
