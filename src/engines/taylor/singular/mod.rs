@@ -59,6 +59,8 @@ pub struct SingularOptions {
     /// Plain Picard iterations before the validation (each fixes the terms of at least one
     /// more order).
     pub iterations: usize,
+    /// Picard images taken after the validation (each sheds most of the candidate's inflation).
+    pub tighten: usize,
 }
 
 impl Default for SingularOptions {
@@ -70,8 +72,9 @@ impl Default for SingularOptions {
                 .unwrap_or(d)
         };
         Self {
-            max_exp: env("BWCL_SING_M", 8.0),
-            iterations: env("BWCL_SING_IT", 10.0) as usize,
+            max_exp: env("BWCL_SING_M", 6.0),
+            iterations: env("BWCL_SING_IT", 3.0) as usize,
+            tighten: env("BWCL_SING_TI", 1.0) as usize,
         }
     }
 }
@@ -93,9 +96,16 @@ impl<const N: usize> SingularTape<N> {
             .into_iter()
             .filter(|q| q.inf() > 0.0)
             .collect();
+        let basis = Basis::new(&gens, opts.max_exp)?;
+        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+            eprintln!(
+                "singular basis: generators {gens:?}, {} exponents up to M",
+                basis.len()
+            );
+        }
         Some(Self {
             tape: tape.map(|c| Gts::constant(*c)),
-            basis: Basis::new(&gens, opts.max_exp)?,
+            basis,
         })
     }
 }
@@ -188,7 +198,7 @@ fn solve_side<const N: usize>(
             // T(S) ⊆ S: the solution is in T(S), and in every further image (T contracts by
             // about δ·Lip: each image sheds most of the candidate's inflation)
             let mut y = ts;
-            for _ in 0..2 {
+            for _ in 0..opts.tighten {
                 y = picard(st, ctx, sigma, w, &y, &start)?;
             }
             return Some(Side { y });

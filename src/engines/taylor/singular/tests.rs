@@ -39,6 +39,7 @@ fn check_crossing(p: &str, x0: f64, v0: f64, half: f64) {
     let opts = SingularOptions {
         max_exp: 6.0,
         iterations: 4,
+        tighten: 2,
     };
     let st = SingularTape::of(&tape, &opts).expect("constant exponents");
     let dual = tape.map(|c| Dual::constant(*c));
