@@ -16,6 +16,7 @@ pub mod elementary;
 pub mod exponent;
 pub mod fastpow;
 pub mod interval;
+pub mod mpfr;
 pub mod real;
 pub mod scalar;
 pub mod series;
