@@ -59,6 +59,8 @@ pub trait Enclosure: Real {
     fn rad_f64(&self) -> f64;
     /// max |x|, rounded up.
     fn mag_f64(&self) -> f64;
+    /// log₂ max |x|, rounded up (+∞ when unbounded): the size of a number beyond f64's range.
+    fn mag_log2(&self) -> f64;
     /// min |x|, rounded down.
     fn mig_f64(&self) -> f64;
     /// self ∩ [0, ∞).

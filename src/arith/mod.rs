@@ -14,6 +14,8 @@ pub mod enclosure;
 pub mod float;
 pub mod interval;
 pub mod jet;
+pub mod mpfr;
+mod mpfr_enclosure;
 pub mod real;
 pub mod scalar;
 

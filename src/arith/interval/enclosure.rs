@@ -86,6 +86,10 @@ impl Enclosure for Interval {
         self.mag()
     }
     #[inline]
+    fn mag_log2(&self) -> f64 {
+        self.mag().log2()
+    }
+    #[inline]
     fn mig_f64(&self) -> f64 {
         self.mig()
     }

@@ -278,7 +278,16 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 &side,
                 if opts.qr { rep.as_ref() } else { None },
             ) {
-                Err(_) => break None,
+                Err(why) => {
+                    if trace {
+                        let why = match why {
+                            step::TaylorFail::AtSurface => "at a switching surface",
+                            step::TaylorFail::TooShort => "too short",
+                        };
+                        eprintln!("  no Taylor step at t={t:.6e}: {why} (h_max {hm:.3e})");
+                    }
+                    break None;
+                }
                 Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
                     step::KinkCut::Whole => break Some(o),
                     step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
@@ -325,7 +334,8 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
                 let mut h = h_low * 4.0;
                 loop {
-                    if h < opts.min_low_order_step {
+                    // (a step shorter than the spacing of doubles at t would not advance)
+                    if h < opts.min_low_order_step || t + h <= t {
                         return Err(RigorError {
                             reason: "cannot cross a switching surface with a proved low-order step"
                                 .into(),

@@ -90,6 +90,18 @@ pub fn eps_scale<I: Enclosure>() -> f64 {
     I::epsilon() / f64::EPSILON
 }
 
+/// wid(r)·h^k, an upper bound (through log₂ when wid(r) is beyond f64's range).
+fn scaled_width<I: Enclosure>(r: &I, h: f64, k: usize) -> f64 {
+    let w = r.wid_f64();
+    if w.is_finite() || w.is_nan() {
+        w * h.powi(k as i32)
+    } else {
+        // wid ≤ 2·mag (∞ when that is undefined: then the step is too wide)
+        let v = (r.mag_log2() + 1.0 + k as f64 * h.log2()).exp2();
+        if v.is_nan() { f64::INFINITY } else { v }
+    }
+}
+
 fn hull<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N]) -> [I; N] {
     std::array::from_fn(|i| a[i].hull(&b[i]))
 }
@@ -220,8 +232,12 @@ fn validate<const N: usize, I: Enclosure>(
         top_m = top_m.max(c[k].mag_f64());
         for (kk, ck) in [(k - 1, &c[k - 1]), (k, &c[k])] {
             let m = ck.mag_f64();
-            if m > 0.0 {
+            if m > 0.0 && m.is_finite() {
                 h = h.min((tol / m).powf(1.0 / kk as f64));
+            } else if m > 0.0 {
+                // beyond f64's range (a precise type close to a branch point, where the
+                // coefficients grow like dist^−k): the same estimate through log₂
+                h = h.min(((tol.log2() - ck.mag_log2()) / kk as f64).exp2());
             }
         }
     }
@@ -246,9 +262,11 @@ fn validate<const N: usize, I: Enclosure>(
             let ynew = taylor_eval(&cbox, &rem, &s);
             if subset(&ynew, &y, tape.params()) {
                 // the remainder's width is what the step adds: keep it at the tolerance
-                let hk = s.hi().powi(k as i32);
                 let tol_rem = tol.max(f64::EPSILON * 1e-3 * eps_scale::<I>());
-                let wrem = rem.iter().map(|r| r.wid_f64()).fold(0.0, f64::max) * hk;
+                let wrem = rem
+                    .iter()
+                    .map(|r| scaled_width(r, s.hi(), k))
+                    .fold(0.0, f64::max);
                 if wrem.is_nan() || wrem > tol_rem {
                     // only the remainder is too wide: it scales like h^K, so aim just below
                     // the tolerance (a heuristic for the next trial; it is validated anew)
@@ -258,7 +276,16 @@ fn validate<const N: usize, I: Enclosure>(
                     break;
                 }
                 if top_m > 0.0 {
-                    *remainder_ratio = rem.iter().map(|r| r.wid_f64()).fold(0.0, f64::max) / top_m;
+                    let ratio = rem.iter().map(|r| r.wid_f64()).fold(0.0, f64::max) / top_m;
+                    *remainder_ratio = if ratio.is_finite() {
+                        ratio
+                    } else {
+                        // coefficients beyond f64's range (a precise type near a branch
+                        // point): the ratio through log₂ (wid ≤ 2·mag)
+                        let w = rem.iter().map(|r| r.mag_log2()).fold(f64::MIN, f64::max);
+                        let top = jx.iter().map(|c| c[k].mag_log2()).fold(f64::MIN, f64::max);
+                        (w + 1.0 - top).exp2()
+                    };
                 }
                 return Ok(Validated {
                     t1,
