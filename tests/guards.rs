@@ -57,7 +57,7 @@ fn piece_holds_blow_up(out: &StepOut<1>) {
     for i in 0..=40 {
         let t = t0 + (t1 - t0) * i as f64 / 40.0;
         let t = t.min(t1);
-        let enc = out.piece.enclose(point(t))[0];
+        let enc = out.piece.enclose(&point(t))[0];
         assert!(
             encloses(enc, &blow_up_exact(t)),
             "x({t}) = {} ∉ {enc:?} (piece [{t0}, {t1}])",
@@ -109,7 +109,7 @@ fn a_taylor_step_whose_first_guess_fails() {
                 let jx = tape.jet(&[point(1.0)], order, &mut jws).unwrap();
                 let coefs: Vec<[Interval; 1]> = (0..order).map(|k| [jx[0][k]]).collect();
                 let s = iv(0.0, out.piece.t1());
-                let again = taylor_eval(&coefs, &[jy[0][order]], s);
+                let again = taylor_eval(&coefs, &[jy[0][order]], &s);
                 assert!(
                     again[0].subset(y[0]),
                     "order {order}, h_max {h_max}, tol {tol}: Y = {y:?} fails its own test: {again:?}"
@@ -283,7 +283,7 @@ fn newton_claims_no_root_it_has_not_proved() {
             _ => next() * 1.2 - 0.1,
         };
         let ri = Rational::from_f64(r).unwrap();
-        let g = |m: f64| point(a) * (point(m) - point(r));
+        let g = |m: &Interval| point(a) * (*m - point(r));
         let d = iv(a * w, a / w);
         let inside = (0..=1).contains(&ri);
         match interval_newton(iv(0.0, 1.0), g, |_| Some(d)) {

@@ -58,7 +58,7 @@ fn imports(file: &str, family: &str) -> BTreeSet<String> {
                     sub
                 };
                 out.insert(format!("{first}/{sub}"));
-            } else if ["real", "scalar"].contains(&first) {
+            } else if ["real", "scalar", "enclosure"].contains(&first) {
                 out.insert(first.to_string());
             } else {
                 // a re-export of the root (crate::arith::Real, Dot, …)

@@ -2,7 +2,7 @@
 //!
 //! | where | what | used by |
 //! |---|---|---|
-//! | [`real`], [`scalar`] | the traits: [`Real`] (a coefficient field, with its [`Exponent`] and [`Dot`] accumulator) and [`Scalar`] (what the models are written against) | everything |
+//! | [`real`], [`scalar`], [`enclosure`] | the traits: [`Real`] (a coefficient field, with its [`Exponent`] and [`Dot`] accumulator), [`Scalar`] (what the models are written against) and [`Enclosure`] (an interval type the rigorous engine runs on) | everything |
 //! | [`float`] | `f64` as a `Real`, powers by tables ([`float::fastpow`]) | the f64 DOP853 engine |
 //! | [`interval`] | inari intervals as a `Real`, exact enclosure of decimal input, ulp kernels ([`interval::ulp`]), sums of products ([`interval::dot`]), exp/ln/pow ([`interval::elementary`]) | the rigorous engine |
 //! | [`jet`] | truncated Taylor series ([`jet::series`]) and dual numbers ([`jet::dual`]) over any `Real` | the rigorous engine's jets and Jacobians, sensitivities, tests |
@@ -10,11 +10,15 @@
 //! Imports go downwards only: the families import the root traits, never each other's
 //! internals (an interval's `Real` powers are inari's; the jets are generic).
 
+pub mod enclosure;
 pub mod float;
 pub mod interval;
 pub mod jet;
+pub mod mpfr;
+mod mpfr_enclosure;
 pub mod real;
 pub mod scalar;
 
+pub use enclosure::Enclosure;
 pub use real::{Dot, Exponent, PlainDot, Real};
 pub use scalar::Scalar;

@@ -11,6 +11,8 @@ use std::path::PathBuf;
 pub const ORDER: RangeInclusive<u64> = 2..=40;
 /// Sub-ranges of a v0 range (each a proof: some 40 ms on the DSS set).
 pub const PIECES: RangeInclusive<u64> = 1..=1024;
+/// Digits of `cor --rigorous --digits` (the largest precision, 384 bits, holds ≈ 115).
+pub const DIGITS: RangeInclusive<u64> = 1..=100;
 /// Sample times of `trajectory` and `loop`.
 pub const POINTS: RangeInclusive<u64> = 2..=100_000;
 /// Random starts of `fit` (each about 3 s on 20 speeds).
@@ -423,6 +425,13 @@ pub struct CorArgs {
     /// Created only when every piece is proved.
     #[arg(long, value_name = "FILE", requires = "rigorous")]
     pub band: Option<PathBuf>,
+    /// With --rigorous: prove T_s and e to D significant digits, 1 ≤ D ≤ 100, on intervals
+    /// over MPFR floats (128, 192, 256 or 384 bits: the smallest with ≥ 3.33·D + 24); the
+    /// Taylor order and the tolerances follow D. Every digit the width allows is printed,
+    /// bounds rounded outward. For --nd or --base with single values of v0.
+    #[arg(long, value_name = "D", allow_hyphen_values = true,
+          value_parser = count(DIGITS))]
+    pub digits: Option<usize>,
     /// Largest thickness of --band (the vertical width of the enclosure of e at any v0),
     /// 1e-14 ≤ T ≤ 1 [default: 1e-6].
     #[arg(long, value_name = "T", requires = "band", allow_hyphen_values = true,

@@ -49,6 +49,19 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
 }
 
 fn cor(a: &CorArgs) -> Result<i32, CliError> {
+    if let Some(d) = a.digits {
+        if !a.engine.rigorous {
+            return Err(CliError::Input(format!(
+                "--digits {d} is an option of the rigorous engine: add --rigorous"
+            )));
+        }
+        if a.band.is_some() {
+            return Err(CliError::Input(
+                "--digits is not supported with --band".into(),
+            ));
+        }
+        return super::precise::cor(a, d);
+    }
     if let Some(path) = &a.band {
         return super::band::band(a, path);
     }

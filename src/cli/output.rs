@@ -432,7 +432,7 @@ where
 
 /// Aligned columns with a header. A row shorter than the header ends with a message cell that
 /// spans the remaining columns (it does not widen them).
-fn table(head: &[&str], rows: &[Vec<String>]) -> String {
+pub(crate) fn table(head: &[&str], rows: &[Vec<String>]) -> String {
     let len = |s: &str| s.chars().count();
     let mut w: Vec<usize> = head.iter().map(|h| len(h)).collect();
     for r in rows {

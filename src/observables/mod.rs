@@ -5,10 +5,12 @@
 //!   (eq:main_cor) on the f64 engine's dense output;
 //! - [`trajectory`]: sampled trajectories and loops (F against X), nondimensional or physical;
 //! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine;
+//! - [`precision`]: the same at a chosen precision (D digits, MPFR intervals);
 //! - [`decimal`]: their bounds as decimals rounded outward, exactly.
 
 pub mod band;
 pub mod decimal;
+pub mod precision;
 pub mod rigorous;
 pub mod separation;
 pub mod sets;

@@ -5,6 +5,7 @@
 
 pub mod dot;
 pub mod elementary;
+mod enclosure;
 pub mod ulp;
 mod ulp_real;
 

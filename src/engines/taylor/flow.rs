@@ -7,35 +7,39 @@
 //! - a low-order piece (across a switching surface): X(t0) + τ·f(Y), Y the a-priori enclosure
 //!   (the mean-value form of x(t) = x(t0) + ∫ f).
 
-use inari::{Interval, const_interval};
+use crate::arith::Enclosure;
+use inari::Interval;
 
-/// One proved piece of the flow.
+/// One proved piece of the flow (over the engine's number type `I`, inari's `Interval` unless
+/// said otherwise). The times of its ends are exact doubles.
 #[derive(Clone, Debug)]
-pub enum Piece<const N: usize> {
+pub enum Piece<const N: usize, I = Interval> {
     Taylor {
         t0: f64,
         t1: f64,
-        coefs: Vec<[Interval; N]>,
-        remainder: [Interval; N],
+        coefs: Vec<[I; N]>,
+        remainder: [I; N],
     },
     LowOrder {
         t0: f64,
         t1: f64,
-        x0: [Interval; N],
-        slope: [Interval; N],
+        x0: [I; N],
+        slope: [I; N],
     },
 }
 
-/// τ = t − t0 as an enclosure (t, t0 exact doubles; the difference may not be).
-pub fn tau(t: Interval, t0: f64) -> Interval {
-    (t - point(t0)).intersection(const_interval!(0.0, f64::INFINITY))
+/// τ = t − t0 as an enclosure (t0 an exact double; the difference may not be).
+#[inline]
+pub fn tau<I: Enclosure>(t: &I, t0: f64) -> I {
+    (t.clone() - I::from_exact_f64(t0)).nonneg()
 }
 
+/// The time point x (an exact double) as an inari interval.
 pub fn point(x: f64) -> Interval {
     Interval::try_from((x, x)).expect("finite time")
 }
 
-impl<const N: usize> Piece<N> {
+impl<const N: usize, I: Enclosure> Piece<N, I> {
     /// Ends the piece earlier, at t (t0 ≤ t ≤ t1): its enclosure stays valid on [t0, t].
     pub fn truncate(&mut self, t: f64) {
         match self {
@@ -57,44 +61,50 @@ impl<const N: usize> Piece<N> {
         }
     }
     /// The enclosure of Φ(t) for every t in `t` (an interval inside [t0, t1]).
-    pub fn enclose(&self, t: Interval) -> [Interval; N] {
+    pub fn enclose(&self, t: &I) -> [I; N] {
         match self {
             Piece::Taylor {
                 t0,
                 coefs,
                 remainder,
                 ..
-            } => super::step::taylor_eval(coefs, remainder, tau(t, *t0)),
+            } => super::step::taylor_eval(coefs, remainder, &tau(t, *t0)),
             Piece::LowOrder { t0, x0, slope, .. } => {
                 let s = tau(t, *t0);
-                std::array::from_fn(|i| x0[i] + s * slope[i])
+                std::array::from_fn(|i| x0[i].clone() + s.clone() * slope[i].clone())
             }
         }
     }
 }
 
 /// The proved flow from T = 0: consecutive pieces.
-#[derive(Clone, Debug, Default)]
-pub struct Flow<const N: usize> {
-    pub pieces: Vec<Piece<N>>,
+#[derive(Clone, Debug)]
+pub struct Flow<const N: usize, I = Interval> {
+    pub pieces: Vec<Piece<N, I>>,
 }
 
-impl<const N: usize> Flow<N> {
+impl<const N: usize, I> Default for Flow<N, I> {
+    fn default() -> Self {
+        Self { pieces: Vec::new() }
+    }
+}
+
+impl<const N: usize, I: Enclosure> Flow<N, I> {
     /// An enclosure of Φ(t) for 0 ≤ t ≤ [`Flow::t_end`] (`None` outside). At a piece boundary
     /// both pieces are valid; the intersection of the two is returned.
-    pub fn enclose(&self, t: f64) -> Option<[Interval; N]> {
+    pub fn enclose(&self, t: f64) -> Option<[I; N]> {
         if !(t >= 0.0 && t <= self.t_end()) {
             return None;
         }
         let i = self.pieces.partition_point(|p| p.t1() < t);
-        let tt = point(t);
-        let mut b = self.pieces.get(i)?.enclose(tt);
+        let tt = I::from_exact_f64(t);
+        let mut b = self.pieces.get(i)?.enclose(&tt);
         if let Some(next) = self.pieces.get(i + 1)
             && next.t0() == t
         {
-            let c = next.enclose(tt);
+            let c = next.enclose(&tt);
             for j in 0..N {
-                let x = b[j].intersection(c[j]);
+                let x = b[j].intersection(&c[j]);
                 if !x.is_empty() {
                     b[j] = x;
                 }

@@ -9,7 +9,8 @@
 //!                     B = J·A,  J = Σ h^k D_k(X) (the Jacobian of the Taylor map over X)
 //! ```
 //!
-//! and the new representation is c′ = mid(z), A′ = Q from a QR factorization of mid(B) with its
+//! and the new representation is c′ = mid(z) (a point of the engine's number type: at high
+//! precision an f64 centre would add its rounding to every step), A′ = Q from a QR factorization of mid(B) with its
 //! columns sorted by ‖mid(B)e_j‖·rad(r_j) (the longest edge of the parallelepiped first),
 //! r′ = (Q⁻¹B)·r + Q⁻¹(z − c′), with Q⁻¹ enclosed rigorously (below). The box of a rotating
 //! set is then not re-wrapped at every step (Lohner 1987; Nedialkov & Jackson 2001).
@@ -18,67 +19,64 @@
 //! arithmetic and e = ‖E‖_∞ < 1, Q⁻¹ = (I − E)⁻¹R and every entry of Q⁻¹ − R is bounded by
 //! ‖(I − E)⁻¹ − I‖_∞‖R‖_∞ ≤ e/(1 − e)·‖R‖_∞ (Neumann series).
 
-use crate::arith::interval::dot::interval_dot;
-use inari::{Interval, const_interval};
+use crate::arith::Enclosure;
+use inari::Interval;
 
-const ZERO: Interval = const_interval!(0.0, 0.0);
-const ONE: Interval = const_interval!(1.0, 1.0);
-
-fn pt(x: f64) -> Interval {
-    Interval::try_from((x, x)).unwrap()
+fn pt<I: Enclosure>(x: f64) -> I {
+    I::from_exact_f64(x)
 }
 
-/// A set c + A·r.
+/// A set c + A·r (c a point of the number type `I`, A an f64 matrix, r a box).
 #[derive(Clone, Debug)]
-pub struct Parallelepiped<const N: usize> {
-    pub c: [f64; N],
+pub struct Parallelepiped<const N: usize, I = Interval> {
+    pub c: [I; N],
     pub a: [[f64; N]; N],
-    pub r: [Interval; N],
+    pub r: [I; N],
 }
 
-impl<const N: usize> Parallelepiped<N> {
+impl<const N: usize, I: Enclosure> Parallelepiped<N, I> {
     /// The box X as c = mid X, A = I, r = X − c.
-    pub fn from_box(x: &[Interval; N]) -> Self {
-        let c: [f64; N] = std::array::from_fn(|i| x[i].mid());
+    pub fn from_box(x: &[I; N]) -> Self {
+        let c: [I; N] = std::array::from_fn(|i| x[i].mid_point());
         let a = std::array::from_fn(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }));
         Self {
+            r: std::array::from_fn(|i| x[i].clone() - c[i].clone()),
             c,
-            r: std::array::from_fn(|i| x[i] - pt(c[i])),
             a,
         }
     }
 
     /// The interval hull of c + A·r.
-    pub fn hull(&self) -> [Interval; N] {
+    pub fn hull(&self) -> [I; N] {
         std::array::from_fn(|i| {
-            interval_dot(
-                std::iter::once((pt(self.c[i]), ONE))
-                    .chain((0..N).map(|j| (pt(self.a[i][j]), self.r[j]))),
+            I::dot(
+                std::iter::once((self.c[i].clone(), I::one()))
+                    .chain((0..N).map(|j| (pt(self.a[i][j]), self.r[j].clone()))),
             )
         })
     }
 
     /// A·r, the set's offsets from c.
-    pub fn offsets(&self) -> [Interval; N] {
-        std::array::from_fn(|i| interval_dot((0..N).map(|j| (pt(self.a[i][j]), self.r[j]))))
+    pub fn offsets(&self) -> [I; N] {
+        std::array::from_fn(|i| I::dot((0..N).map(|j| (pt(self.a[i][j]), self.r[j].clone()))))
     }
 
     /// The set z + B·r of the next step, re-represented with A′ = Q (see the module doc).
     /// `None` when Q⁻¹ cannot be enclosed (then the caller keeps a box).
-    pub fn advance(z: &[Interval; N], b: &[[Interval; N]; N], r: &[Interval; N]) -> Option<Self> {
-        let c: [f64; N] = std::array::from_fn(|i| z[i].mid());
+    pub fn advance(z: &[I; N], b: &[[I; N]; N], r: &[I; N]) -> Option<Self> {
+        let c: [I; N] = std::array::from_fn(|i| z[i].mid_point());
         let bm: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| b[i][j].mid()));
         let q = orthonormal_basis(&bm, r)?;
-        let qinv = inverse_enclosure(&q)?;
+        let qinv = inverse_enclosure_in::<I, N>(&q)?;
         // Q⁻¹B, then r′ = (Q⁻¹B)·r + Q⁻¹(z − c′)
-        let qb: [[Interval; N]; N] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| interval_dot((0..N).map(|l| (qinv[i][l], b[l][j]))))
+        let qb: [[I; N]; N] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| I::dot((0..N).map(|l| (qinv[i][l].clone(), b[l][j].clone()))))
         });
         let r1 = std::array::from_fn(|i| {
-            interval_dot(
+            I::dot(
                 (0..N)
-                    .map(|j| (qinv[i][j], z[j] - pt(c[j])))
-                    .chain((0..N).map(|j| (qb[i][j], r[j]))),
+                    .map(|j| (qinv[i][j].clone(), z[j].clone() - c[j].clone()))
+                    .chain((0..N).map(|j| (qb[i][j].clone(), r[j].clone()))),
             )
         });
         Some(Self { c, a: q, r: r1 })
@@ -89,24 +87,25 @@ impl<const N: usize> Parallelepiped<N> {
     /// box f(Y), so the parallelepiped survives it with the small box τ·f(Y) added, instead of
     /// being re-wrapped as a box (which loses the correlations of a wide set, e.g. with a
     /// parameter range as components).
-    pub fn shifted(&self, d: &[Interval; N]) -> Option<Self> {
-        let z: [Interval; N] = std::array::from_fn(|i| pt(self.c[i]) + d[i]);
-        let b: [[Interval; N]; N] =
-            std::array::from_fn(|i| std::array::from_fn(|j| pt(self.a[i][j])));
+    pub fn shifted(&self, d: &[I; N]) -> Option<Self> {
+        let z: [I; N] = std::array::from_fn(|i| self.c[i].clone() + d[i].clone());
+        let b: [[I; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| pt(self.a[i][j])));
         Self::advance(&z, &b, &self.r)
     }
 }
 
 /// Q of a QR factorization of m with its columns sorted by ‖m e_j‖·rad(r_j), by modified
 /// Gram–Schmidt (None if the columns are numerically dependent).
-fn orthonormal_basis<const N: usize>(
+fn orthonormal_basis<const N: usize, I: Enclosure>(
     m: &[[f64; N]; N],
-    r: &[Interval; N],
+    r: &[I; N],
 ) -> Option<[[f64; N]; N]> {
     let col = |j: usize| -> [f64; N] { std::array::from_fn(|i| m[i][j]) };
     let norm = |v: &[f64; N]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let mut order: Vec<usize> = (0..N).collect();
-    order.sort_by(|&a, &b| (norm(&col(b)) * r[b].rad()).total_cmp(&(norm(&col(a)) * r[a].rad())));
+    order.sort_by(|&a, &b| {
+        (norm(&col(b)) * r[b].rad_f64()).total_cmp(&(norm(&col(a)) * r[a].rad_f64()))
+    });
     let mut qs: Vec<[f64; N]> = Vec::with_capacity(N);
     for &j in &order {
         let mut v = col(j);
@@ -125,31 +124,41 @@ fn orthonormal_basis<const N: usize>(
     Some(std::array::from_fn(|i| std::array::from_fn(|j| qs[j][i])))
 }
 
-/// A rigorous enclosure of Q⁻¹ for a point matrix Q close to orthogonal (module doc).
-#[allow(clippy::needless_range_loop)] // matrix products read clearer indexed
+/// A rigorous enclosure of Q⁻¹ for a point matrix Q close to orthogonal (module doc), as
+/// inari intervals.
 pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval; N]; N]> {
+    inverse_enclosure_in::<Interval, N>(q)
+}
+
+/// [`inverse_enclosure`] in the number type `I`. The norms e and ‖R‖ are carried as f64
+/// upper bounds (the ball's radius δ is rounded up), R's entries are exact: the enclosure is
+/// R ± δ whatever the precision of `I`.
+#[allow(clippy::needless_range_loop)] // matrix products read clearer indexed
+pub fn inverse_enclosure_in<I: Enclosure, const N: usize>(
+    q: &[[f64; N]; N],
+) -> Option<[[I; N]; N]> {
     let r: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| q[j][i]));
-    let mut e_norm = ZERO;
-    let mut r_norm = ZERO;
+    let mut e_norm = I::zero();
+    let mut r_norm = I::zero();
     for i in 0..N {
-        let mut row = ZERO;
-        let mut rrow = ZERO;
+        let mut row = I::zero();
+        let mut rrow = I::zero();
         for j in 0..N {
-            let rq = interval_dot((0..N).map(|l| (pt(r[i][l]), pt(q[l][j]))));
-            let e = if i == j { ONE - rq } else { -rq };
-            row += pt(e.mag());
-            rrow += pt(r[i][j].abs());
+            let rq = I::dot((0..N).map(|l| (pt::<I>(r[i][l]), pt::<I>(q[l][j]))));
+            let e = if i == j { I::one() - rq } else { -rq };
+            row = row + pt(e.mag_f64());
+            rrow = rrow + pt(r[i][j].abs());
         }
-        e_norm = pt(e_norm.sup().max(row.sup()));
-        r_norm = pt(r_norm.sup().max(rrow.sup()));
+        e_norm = pt(e_norm.hi().max(row.hi()));
+        r_norm = pt(r_norm.hi().max(rrow.hi()));
     }
-    if e_norm.sup().is_nan() || e_norm.sup() >= 0.5 {
+    if e_norm.hi().is_nan() || e_norm.hi() >= 0.5 {
         return None;
     }
-    let delta = (e_norm / (ONE - e_norm) * r_norm).sup();
-    let ball = Interval::try_from((-delta, delta)).ok()?;
+    let delta = (e_norm.clone() / (I::one() - e_norm) * r_norm).hi();
+    let ball = I::from_bounds(-delta, delta)?;
     Some(std::array::from_fn(|i| {
-        std::array::from_fn(|j| pt(r[i][j]) + ball)
+        std::array::from_fn(|j| pt::<I>(r[i][j]) + ball.clone())
     }))
 }
 
@@ -157,6 +166,13 @@ pub fn inverse_enclosure<const N: usize>(q: &[[f64; N]; N]) -> Option<[[Interval
 #[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
+    use inari::const_interval;
+
+    const ZERO: Interval = const_interval!(0.0, 0.0);
+
+    fn pt(x: f64) -> Interval {
+        Interval::try_from((x, x)).unwrap()
+    }
 
     #[test]
     fn inverse_of_a_rotation_encloses_its_transpose_and_the_identity() {
@@ -222,7 +238,7 @@ mod tests {
             std::f64::consts::FRAC_1_SQRT_2,
         );
         let p = Parallelepiped {
-            c: [0.5, -0.25],
+            c: [pt(0.5), pt(-0.25)],
             a: [[c, -s], [s, c]],
             r: [
                 Interval::try_from((-1.0, 1.0)).unwrap(),
@@ -240,7 +256,7 @@ mod tests {
             (0..2).all(|i| {
                 let mut acc = ZERO;
                 for j in 0..2 {
-                    acc += qi[i][j] * (pt(x[j]) - pt(q.c[j]));
+                    acc += qi[i][j] * (pt(x[j]) - q.c[j]);
                 }
                 !acc.intersection(q.r[i]).is_empty()
             })
@@ -249,7 +265,10 @@ mod tests {
             for r1 in [-1e-9, 1e-9] {
                 for d0 in [1.0, 1.5] {
                     for d1 in [-0.25, 0.0] {
-                        let x = [p.c[0] + c * r0 - s * r1 + d0, p.c[1] + s * r0 + c * r1 + d1];
+                        let x = [
+                            p.c[0].inf() + c * r0 - s * r1 + d0,
+                            p.c[1].inf() + s * r0 + c * r1 + d1,
+                        ];
                         assert!(inside(x), "corner {x:?} outside {q:?}");
                     }
                 }

@@ -26,10 +26,10 @@ pub mod tape;
 pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
 
+use crate::arith::Enclosure;
 use crate::models::CollisionModel;
 use tape::{Tape, Workspace};
 
-use inari::Interval;
 use std::fmt;
 
 /// Tunables of the rigorous engine, with documented defaults.
@@ -56,6 +56,8 @@ pub struct TaylorOptions {
     pub min_taylor_step: f64,
     /// First trial length of a low-order step across a switching surface.
     pub low_order_step: f64,
+    /// Shortest low-order step tried before the engine gives up crossing.
+    pub min_low_order_step: f64,
     /// Most width a low-order step may add to the enclosure (or 10⁻³ of the width it has, when
     /// that is larger: an enclosure that is already wide, e.g. for a range of v0, is not
     /// refined by crossing in tiny steps; likewise the truncation tolerance is at least 10⁻⁴ of
@@ -71,7 +73,7 @@ pub struct TaylorOptions {
     pub qr: bool,
     /// Cross a branch point (a switching component of a power reaching 0) by one step in the
     /// crossing variable ([`singular`]) instead of geometrically shrinking Taylor steps and a
-    /// low-order step; off: the latter only.
+    /// low-order step; off: the latter only. Taken by the f64-interval engine (inari).
     pub singular: bool,
 }
 
@@ -86,6 +88,7 @@ impl Default for TaylorOptions {
             max_steps: 20_000,
             min_taylor_step: 1e-8,
             low_order_step: 1e-7,
+            min_low_order_step: 1e-14,
             cross_tol: 1e-16,
             event_slack: 1e-3,
             qr: true,
@@ -124,10 +127,14 @@ impl std::error::Error for RigorError {}
 /// [`step::taylor_step`]); called from outside rayon's pool, the integration moves into it so
 /// that these joins stay cheap. `RAYON_NUM_THREADS=1` makes it single-threaded; the result is
 /// identical either way.
-pub fn integrate_to_separation<M: CollisionModel<Interval, N> + Sync, const N: usize>(
+///
+/// Generic over the number type `I` ([`Enclosure`]): inari's `Interval` (f64 ends, the fast
+/// path) or an interval at a chosen precision; the algorithm is the same.
+#[allow(clippy::type_complexity)]
+pub fn integrate_to_separation<I: Enclosure, M: CollisionModel<I, N> + Sync, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
-) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
+) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
     if rayon::current_thread_index().is_some() {
         integrate(model, opts)
     } else {
@@ -135,11 +142,12 @@ pub fn integrate_to_separation<M: CollisionModel<Interval, N> + Sync, const N: u
     }
 }
 
-fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
+#[allow(clippy::type_complexity)]
+fn integrate<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
-) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
-    let tape = Tape::<Interval, N>::record(|v| {
+) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
+    let tape = Tape::<I, N>::record(|v| {
         let mut o = model.field(v).to_vec();
         o.push(model.force(v));
         o.push(model.velocity(v));
@@ -154,12 +162,13 @@ fn integrate<M: CollisionModel<Interval, N>, const N: usize>(
 /// ṗ = 0: [`crate::observables::sets`]). The first `n_state` components are the model's state:
 /// the enclosure's width that steers the tolerances and stops a widening enclosure is theirs
 /// (a parameter's range, or a derivative's scale, is not the state's uncertainty).
-pub fn integrate_system<const N: usize>(
-    tape: &Tape<Interval, N>,
-    x0: [Interval; N],
+#[allow(clippy::type_complexity)]
+pub fn integrate_system<I: Enclosure, const N: usize>(
+    tape: &Tape<I, N>,
+    x0: [I; N],
     n_state: usize,
     opts: &TaylorOptions,
-) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
+) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
     if rayon::current_thread_index().is_some() {
         integrate_tape(tape, x0, n_state, opts)
     } else {
@@ -177,13 +186,14 @@ const WIDE_SET: f64 = 1e-10;
 /// reach 0 at its fastest).
 const SINGULAR_NEAR: f64 = 2e-3;
 
-fn integrate_tape<const N: usize>(
-    tape: &Tape<Interval, N>,
-    x0: [Interval; N],
+#[allow(clippy::type_complexity)]
+fn integrate_tape<I: Enclosure, const N: usize>(
+    tape: &Tape<I, N>,
+    x0: [I; N],
     n_state: usize,
     opts: &TaylorOptions,
-) -> Result<(Flow<N>, SeparationEvent<N>), RigorError> {
-    let width = |x: &[Interval; N]| x[..n_state].iter().map(|c| c.wid()).fold(0.0, f64::max);
+) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
+    let width = |x: &[I; N]| x[..n_state].iter().map(|c| c.wid_f64()).fold(0.0, f64::max);
     if opts.order < 2
         || opts.tol.is_nan()
         || opts.tol <= 0.0
@@ -201,24 +211,18 @@ fn integrate_tape<const N: usize>(
         0 => step::jacobian_orders(opts.order),
         k => k.min(opts.order),
     };
-    let mut ws = step::Workspaces::default();
+    let mut ws = step::Workspaces::<N, I>::default();
     let mut ev_ws = Workspace::default();
-    // the singular step across branch points (point sets only: a wide set keeps its
+    // the singular step across branch points (f64 intervals, point sets: a wide set keeps its
     // parallelepiped through the Taylor steps)
-    let sing_opts = singular::SingularOptions::default();
-    let sing_tape = if opts.singular {
-        singular::SingularTape::of(tape, &sing_opts)
+    let mut sing = if opts.singular {
+        singular::Singular::new(tape)
     } else {
         None
     };
-    let sing_dual = sing_tape
-        .as_ref()
-        .map(|_| tape.map(|c| crate::arith::jet::dual::Dual::constant(*c)));
-    // after a refused singular step, the next try waits until the surface is this near
-    let mut sing_retry = f64::INFINITY;
     let mut x = x0;
     // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
-    let mut rep: Option<lohner::Parallelepiped<N>> = None;
+    let mut rep: Option<lohner::Parallelepiped<N, I>> = None;
     let mut t = 0.0_f64;
     let mut flow = Flow::default();
     let mut h_low = opts.low_order_step;
@@ -249,9 +253,9 @@ fn integrate_tape<const N: usize>(
         let mut h_surf = f64::INFINITY;
         for &i in switching.iter().filter(|i| !tape.kinks().contains(i)) {
             let toward =
-                (x[i].inf() > 0.0 && f[i].inf() < 0.0) || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
+                (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
             if toward {
-                h_surf = h_surf.min(x[i].mig() / f[i].mag());
+                h_surf = h_surf.min(x[i].mig_f64() / f[i].mag_f64());
             }
         }
         let h_max = (opts.horizon - t).min(if h_surf.is_finite() {
@@ -281,101 +285,104 @@ fn integrate_tape<const N: usize>(
             .iter()
             .filter(|i| !tape.kinks().contains(i))
             .filter_map(|&i| {
-                let toward = (x[i].inf() > 0.0 && f[i].inf() < 0.0)
-                    || (x[i].sup() < 0.0 && f[i].sup() > 0.0);
-                toward.then(|| (i, x[i].mig() / f[i].mag()))
+                let toward =
+                    (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
+                toward.then(|| (i, x[i].mig_f64() / f[i].mag_f64()))
             })
             .filter(|&(_, h)| h < SINGULAR_NEAR);
-        let singular_out = match (&sing_tape, near.next(), near.next()) {
-            (Some(st), Some((i, h)), None) if w <= WIDE_SET && h < sing_retry => {
-                let dual = sing_dual.as_ref().expect("made with the singular tape");
+        let singular_out = match (&mut sing, near.next(), near.next()) {
+            (Some(s), Some((i, h)), None) if w <= WIDE_SET => {
                 let r = if opts.qr { rep.as_ref() } else { None };
-                let o =
-                    singular::crossing_step(st, tape, dual, t, &x, r, i, &sing_opts).filter(|o| {
-                        // taken when it adds little width (the expansions' remainder grows
-                        // like δ^M: too far from the surface the step is refused, and tried
-                        // again nearer)
-                        width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15)
-                            && matches!(
-                                event::scan_piece(tape, &mut ev_ws, &o.piece),
-                                event::Verdict::Cleared
-                            )
-                    });
-                sing_retry = if o.is_some() { f64::INFINITY } else { h / 4.0 };
-                o
+                s.try_step(t, &x, r, i, h).filter(|o| {
+                    // taken when it adds little width (the expansions' remainder grows like
+                    // δ^M: too far from the surface the step is refused, and tried again nearer)
+                    let ok = width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15)
+                        && matches!(
+                            event::scan_piece(tape, &mut ev_ws, &o.piece),
+                            event::Verdict::Cleared
+                        );
+                    s.taken(ok, h);
+                    ok
+                })
             }
             _ => None,
         };
         let mut hm = h_max;
-        let taylor = if singular_out.is_some() {
-            None
-        } else {
-            loop {
-                match step::taylor_step(
-                    &tapes,
-                    &mut ws,
-                    t,
-                    &x,
-                    opts.order,
-                    kd,
-                    opts.tol.max(1e-4 * w),
-                    hm,
-                    opts.min_taylor_step,
-                    &side,
-                    if opts.qr { rep.as_ref() } else { None },
-                ) {
-                    Err(_) => break None,
-                    Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
-                        step::KinkCut::Whole => break Some(o),
-                        step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
-                            // the step again, ending at the cut: its end set stays a
-                            // parallelepiped (a truncated piece gives a box)
-                            if o.rep.is_some()
-                                && w > WIDE_SET
-                                && let Ok(o2) = step::taylor_step(
-                                    &tapes,
-                                    &mut ws,
-                                    t,
-                                    &x,
-                                    opts.order,
-                                    kd,
-                                    opts.tol.max(1e-4 * w),
-                                    tc - t,
-                                    opts.min_taylor_step,
-                                    &side,
-                                    rep.as_ref(),
-                                )
-                                && matches!(
-                                    step::cut_at_kinks(tape, &o2, &side),
-                                    step::KinkCut::Whole
-                                )
-                            {
-                                break Some(o2);
-                            }
-                            o.piece.truncate(tc);
-                            o.x1 = o.piece.enclose(flow::point(tc));
-                            o.rep = None;
-                            break Some(o);
-                        }
-                        // the crossing is right ahead: a low-order step takes it
-                        step::KinkCut::Before(_) => break None,
-                        step::KinkCut::Unresolved => {
-                            hm = 0.5 * (o.piece.t1() - t);
-                            if hm < opts.min_taylor_step {
-                                break None;
-                            }
-                        }
-                    },
+        let taylor = loop {
+            if singular_out.is_some() {
+                break None;
+            }
+            match step::taylor_step(
+                &tapes,
+                &mut ws,
+                t,
+                &x,
+                opts.order,
+                kd,
+                opts.tol.max(1e-4 * w),
+                hm,
+                opts.min_taylor_step,
+                &side,
+                if opts.qr { rep.as_ref() } else { None },
+            ) {
+                Err(why) => {
+                    if trace {
+                        let why = match why {
+                            step::TaylorFail::AtSurface => "at a switching surface",
+                            step::TaylorFail::TooShort => "too short",
+                        };
+                        eprintln!("  no Taylor step at t={t:.6e}: {why} (h_max {hm:.3e})");
+                    }
+                    break None;
                 }
+                Ok(mut o) => match step::cut_at_kinks(tape, &o, &side) {
+                    step::KinkCut::Whole => break Some(o),
+                    step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
+                        // the step again, ending at the cut: its end set stays a
+                        // parallelepiped (a truncated piece gives a box)
+                        if o.rep.is_some()
+                            && w > WIDE_SET
+                            && let Ok(o2) = step::taylor_step(
+                                &tapes,
+                                &mut ws,
+                                t,
+                                &x,
+                                opts.order,
+                                kd,
+                                opts.tol.max(1e-4 * w),
+                                tc - t,
+                                opts.min_taylor_step,
+                                &side,
+                                rep.as_ref(),
+                            )
+                            && matches!(step::cut_at_kinks(tape, &o2, &side), step::KinkCut::Whole)
+                        {
+                            break Some(o2);
+                        }
+                        o.piece.truncate(tc);
+                        o.x1 = o.piece.enclose(&I::from_exact_f64(tc));
+                        o.rep = None;
+                        break Some(o);
+                    }
+                    // the crossing is right ahead: a low-order step takes it
+                    step::KinkCut::Before(_) => break None,
+                    step::KinkCut::Unresolved => {
+                        hm = 0.5 * (o.piece.t1() - t);
+                        if hm < opts.min_taylor_step {
+                            break None;
+                        }
+                    }
+                },
             }
         };
-        let out = match (taylor, singular_out) {
-            (Some(o), _) | (None, Some(o)) => o,
-            (None, None) => {
+        let out = match taylor.or(singular_out) {
+            Some(o) => o,
+            None => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
                 let mut h = h_low * 4.0;
                 loop {
-                    if h < 1e-14 {
+                    // (a step shorter than the spacing of doubles at t would not advance)
+                    if h < opts.min_low_order_step || t + h <= t {
                         return Err(RigorError {
                             reason: "cannot cross a switching surface with a proved low-order step"
                                 .into(),
@@ -388,17 +395,18 @@ fn integrate_tape<const N: usize>(
                         if let (Some(p), true, Piece::LowOrder { t0, t1, slope, .. }) =
                             (&rep, opts.qr && w > WIDE_SET, &o.piece)
                         {
-                            let tau1 = flow::tau(flow::point(*t1), *t0);
-                            let d: [Interval; N] = std::array::from_fn(|i| tau1 * slope[i]);
+                            let tau1 = flow::tau(&I::from_exact_f64(*t1), *t0);
+                            let d: [I; N] =
+                                std::array::from_fn(|i| tau1.clone() * slope[i].clone());
                             if let Some(p1) = p.shifted(&d) {
                                 let h1 = p1.hull();
-                                o.x1 = std::array::from_fn(|i| o.x1[i].intersection(h1[i]));
+                                o.x1 = std::array::from_fn(|i| o.x1[i].intersection(&h1[i]));
                                 o.rep = Some(p1);
                             }
                         }
                         if width(&o.x1) - w
                             <= opts.cross_tol.max(1e-3 * w)
-                                + 4.0 * f64::EPSILON * step::magnitude(&o.x1)
+                                + 4.0 * I::epsilon() * step::magnitude(&o.x1)
                         {
                             h_low = h;
                             break o;
@@ -415,10 +423,10 @@ fn integrate_tape<const N: usize>(
             (event::Verdict::Found(ev), None) => return Ok((flow, ev)),
             // T_s was not excluded from [p, …) but is proved by here: T_s ∈ [p, ts.sup]
             (event::Verdict::Found(ev), Some(p)) => {
-                let ev = event::between(tape, &flow, p, ev.ts.sup());
+                let ev = event::between(tape, &flow, p, ev.ts.hi());
                 return Ok((flow, ev));
             }
-            (event::Verdict::Undecided(tt), None) => pending = Some(tt.inf()),
+            (event::Verdict::Undecided(tt), None) => pending = Some(tt.lo()),
             _ => {}
         }
         if let Some(p) = pending {
@@ -448,9 +456,13 @@ fn integrate_tape<const N: usize>(
                 "{kind} t={t:.6e} h={:.3e} w={:.3e} x={:?}",
                 t1 - t,
                 width(&out.x1),
-                out.x1.map(|c| c.mid())
+                out.x1.iter().map(|c| c.mid()).collect::<Vec<f64>>()
             );
-            let widths: Vec<String> = out.x1.iter().map(|c| format!("{:.1e}", c.wid())).collect();
+            let widths: Vec<String> = out
+                .x1
+                .iter()
+                .map(|c| format!("{:.1e}", c.wid_f64()))
+                .collect();
             eprintln!(
                 "  widths {} (parallelepiped: {})",
                 widths.join(" "),

@@ -4,12 +4,12 @@
 //! N(T) = m − g(m)/g′(T), m the midpoint of T; T ← T ∩ N(T) until it stops shrinking. If some
 //! N(T) ⊆ int T, g has exactly one zero in the first T (Moore), and every later T contains it.
 
-use inari::Interval;
+use crate::arith::Enclosure;
 
 /// What interval Newton proved about the zeros of g on T.
-pub enum Newton {
+pub enum Newton<I> {
     /// Exactly one zero, inside this interval.
-    Root(Interval),
+    Root(I),
     /// No zero in T (T ∩ N(T) = ∅).
     NoRoot,
     /// Neither could be proved (or `dg` declined).
@@ -17,27 +17,29 @@ pub enum Newton {
 }
 
 /// Interval Newton on T with `g(m)` an enclosure of g at the point m and `dg(T)` an enclosure
-/// of g′ over T (`None`: not usable there, e.g. its sign is not the one required).
-pub fn interval_newton(
-    mut t: Interval,
-    mut g: impl FnMut(f64) -> Interval,
-    mut dg: impl FnMut(Interval) -> Option<Interval>,
-) -> Newton {
+/// of g′ over T (`None`: not usable there, e.g. its sign is not the one required). The
+/// midpoint m is a point of the type (at high precision T becomes far narrower than a double's
+/// spacing).
+pub fn interval_newton<I: Enclosure>(
+    mut t: I,
+    mut g: impl FnMut(&I) -> I,
+    mut dg: impl FnMut(&I) -> Option<I>,
+) -> Newton<I> {
     let mut proved = false;
     for _ in 0..40 {
-        let Some(d) = dg(t) else {
+        let Some(d) = dg(&t) else {
             return Newton::Undecided;
         };
-        let m = t.mid();
-        let n = Interval::try_from((m, m)).unwrap() - g(m) / d;
-        let tn = t.intersection(n);
+        let m = t.mid_point();
+        let n = m.clone() - g(&m) / d;
+        let tn = t.intersection(&n);
         if tn.is_empty() {
             return Newton::NoRoot;
         }
-        if n.interior(t) {
+        if n.interior(&t) {
             proved = true;
         }
-        if tn == t {
+        if tn.same(&t) {
             break;
         }
         t = tn;

@@ -21,100 +21,120 @@
 //! (Picard–Lindelöf), then Φ(t0 + τ) ∈ X + τ·f(Y) for τ ∈ [0, h] — valid across any
 //! switching surface because f is only evaluated, never expanded.
 
-use super::flow::{Piece, point};
+use super::flow::{Piece, tau};
 use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
 use super::tape::{Tape, Workspace};
-use crate::arith::interval::dot::interval_dot;
-use crate::arith::interval::ulp::Ulp;
+use crate::arith::Enclosure;
 use crate::arith::jet::dual::Dual;
 use inari::Interval;
 
 /// [0, h].
-fn span(h: f64) -> Interval {
-    Interval::try_from((0.0, h)).unwrap()
+fn span<I: Enclosure>(h: f64) -> I {
+    I::from_bounds(0.0, h).expect("a step length")
 }
 
 /// The end t1 = fl(t0 + h) of a step and the τ-range [0, t1 − t0] on which it is validated, with
 /// the upper end rounded up: fl(t1 − t0) may lie below the exact difference (t1 > 2 t0), and
 /// the piece is used up to the exact t1.
-pub fn step_span(t0: f64, h: f64) -> (f64, Interval) {
+pub fn step_span<I: Enclosure>(t0: f64, h: f64) -> (f64, I) {
     let t1 = t0 + h;
-    (t1, span(super::flow::tau(point(t1), t0).sup()))
+    (t1, span(tau::<Interval>(&point(t1), t0).sup()))
+}
+
+fn point(x: f64) -> Interval {
+    super::flow::point(x)
 }
 
 /// a ⊆ int b, except for the parameter components (ṗ = 0 exactly: a ⊆ b).
-fn subset<const N: usize>(a: &[Interval; N], b: &[Interval; N], params: &[usize]) -> bool {
+fn subset<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N], params: &[usize]) -> bool {
     (0..N).all(|i| {
         if params.contains(&i) {
-            a[i].subset(b[i])
+            a[i].subset(&b[i])
         } else {
-            a[i].interior(b[i])
+            a[i].interior(&b[i])
         }
     })
 }
 
 /// A guess of an a-priori box with the parameter components kept at their values in x (a
 /// parameter is constant: inflating it would leave its admissible range, e.g. n < 1).
-fn keep_params<const N: usize>(
-    mut y: [Interval; N],
-    x: &[Interval; N],
+fn keep_params<const N: usize, I: Enclosure>(
+    mut y: [I; N],
+    x: &[I; N],
     params: &[usize],
-) -> [Interval; N] {
+) -> [I; N] {
     for &i in params {
-        y[i] = x[i];
+        y[i] = x[i].clone();
     }
     y
 }
 
 /// Inflates a box: mid ± (factor·rad + abs).
-fn inflate<const N: usize>(y: &[Interval; N], factor: f64, abs: f64) -> [Interval; N] {
+fn inflate<const N: usize, I: Enclosure>(y: &[I; N], factor: f64, abs: f64) -> [I; N] {
     std::array::from_fn(|i| {
-        let r = y[i].rad() * factor + abs + y[i].mag() * 1e-15;
+        let r = y[i].rad_f64() * factor + abs + y[i].mag_f64() * (1e-15 * eps_scale::<I>());
         // an empty or unbounded component (r NaN or ∞) stays unbounded: the test then fails
-        match Interval::try_from((-r, r)) {
-            Ok(b) => y[i] + b,
-            Err(_) => Interval::ENTIRE,
+        match I::from_bounds(-r, r) {
+            Some(b) => y[i].clone() + b,
+            None => I::entire(),
         }
     })
 }
 
-fn hull<const N: usize>(a: &[Interval; N], b: &[Interval; N]) -> [Interval; N] {
-    std::array::from_fn(|i| a[i].convex_hull(b[i]))
+/// The type's machine epsilon relative to f64's (exactly 1 for inari intervals): the relative
+/// floors of the f64 engine (a guess's inflation, the smallest tolerance) scaled to the
+/// precision.
+#[inline]
+pub fn eps_scale<I: Enclosure>() -> f64 {
+    I::epsilon() / f64::EPSILON
 }
 
-/// Σ_{k<K} c_k s^k + s^K r (Horner), for an interval s.
-pub fn taylor_eval<const N: usize>(
-    coefs: &[[Interval; N]],
-    rem: &[Interval; N],
-    s: Interval,
-) -> [Interval; N] {
+/// wid(r)·h^k, an upper bound (through log₂ when wid(r) is beyond f64's range).
+fn scaled_width<I: Enclosure>(r: &I, h: f64, k: usize) -> f64 {
+    let w = r.wid_f64();
+    if w.is_finite() || w.is_nan() {
+        w * h.powi(k as i32)
+    } else {
+        // wid ≤ 2·mag (∞ when that is undefined: then the step is too wide)
+        let v = (r.mag_log2() + 1.0 + k as f64 * h.log2()).exp2();
+        if v.is_nan() { f64::INFINITY } else { v }
+    }
+}
+
+fn hull<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N]) -> [I; N] {
+    std::array::from_fn(|i| a[i].hull(&b[i]))
+}
+
+/// Σ_{k<K} c_k s^k + s^K r (Horner), for an interval s: in the jet arithmetic of `I` (for
+/// inari intervals [`crate::arith::interval::ulp::Ulp`], the same enclosures without
+/// rounding-mode switches).
+pub fn taylor_eval<const N: usize, I: Enclosure>(coefs: &[[I; N]], rem: &[I; N], s: &I) -> [I; N] {
     let k = coefs.len();
     if s.is_empty() || coefs.iter().any(|c| c.iter().any(|x| x.is_empty())) {
-        return [Interval::EMPTY; N];
+        return std::array::from_fn(|_| I::empty());
     }
-    // Horner in Ulp arithmetic (inari's enclosure without its rounding-mode switches)
-    let sk = Ulp::of(crate::arith::interval::elementary::powi_nonneg(s, k as u32));
-    let su = Ulp::of(s);
+    let sk = s.powi_nonneg(k as u32).to_jet();
+    let su = s.to_jet();
     std::array::from_fn(|i| {
-        let mut p = Ulp::of(coefs[k - 1][i]);
+        let mut p = coefs[k - 1][i].to_jet();
         for c in coefs.iter().rev().skip(1) {
-            p = p * su + Ulp::of(c[i]);
+            p = p * su.clone() + c[i].to_jet();
         }
         if rem[i].is_empty() {
-            return Interval::EMPTY;
+            return I::empty();
         }
-        (p + Ulp::of(rem[i]) * sk).interval()
+        I::from_jet(p + rem[i].to_jet() * sk.clone())
     })
 }
 
 /// A proved step: the piece, the box at its end, and (for a Taylor step) the a-priori box.
-pub struct StepOut<const N: usize> {
-    pub piece: Piece<N>,
-    pub x1: [Interval; N],
-    pub apriori: [Interval; N],
+pub struct StepOut<const N: usize, I = Interval> {
+    pub piece: Piece<N, I>,
+    pub x1: [I; N],
+    pub apriori: [I; N],
     /// The set at the step's end as a parallelepiped (Taylor steps with QR), if any.
-    pub rep: Option<Parallelepiped<N>>,
+    pub rep: Option<Parallelepiped<N, I>>,
 }
 
 /// Why a Taylor step was not taken.
@@ -126,43 +146,42 @@ pub enum TaylorFail {
 }
 
 /// The tapes a Taylor step runs: the field over intervals, and over interval duals (for the
-/// Jacobian of the Taylor coefficients with respect to the initial state). Both in [`Ulp`]
-/// arithmetic (inari's enclosures without its rounding-mode switches); the jets are converted
-/// to inari intervals once computed.
-pub struct Tapes<const N: usize> {
-    pub plain: Tape<Ulp, N>,
-    pub dual: Tape<Dual<Ulp, N>, N>,
+/// Jacobian of the Taylor coefficients with respect to the initial state). Both in the jet
+/// arithmetic `I::Jet` (for inari intervals [`crate::arith::interval::ulp::Ulp`], inari's
+/// enclosures without its rounding-mode switches); the jets are converted to `I` once computed.
+pub struct Tapes<const N: usize, I: Enclosure = Interval> {
+    pub plain: Tape<I::Jet, N>,
+    pub dual: Tape<Dual<I::Jet, N>, N>,
 }
 
-impl<const N: usize> Tapes<N> {
+impl<const N: usize, I: Enclosure> Tapes<N, I> {
     /// The jet tapes of an interval tape (constants converted exactly: same endpoints).
-    pub fn of(tape: &Tape<Interval, N>) -> Self {
+    pub fn of(tape: &Tape<I, N>) -> Self {
         Self {
-            plain: tape.map(|c| Ulp::of(*c)),
-            dual: tape.map(|c| Dual::constant(Ulp::of(*c))),
+            plain: tape.map(|c| c.to_jet()),
+            dual: tape.map(|c| Dual::constant(c.to_jet())),
         }
     }
 }
 
-/// [`Tape::jet_on`] over [`Ulp`] for an inari box, the coefficients as inari intervals.
-fn jet_iv<const N: usize>(
-    tape: &Tape<Ulp, N>,
-    x: &[Interval; N],
+/// [`Tape::jet_on`] over `I::Jet` for a box of `I`, the coefficients as `I`.
+fn jet_iv<const N: usize, I: Enclosure>(
+    tape: &Tape<I::Jet, N>,
+    x: &[I; N],
     order: usize,
-    ws: &mut Workspace<Ulp>,
+    ws: &mut Workspace<I::Jet>,
     side: &[i8; N],
-) -> Result<[Vec<Interval>; N], super::tape::JetError> {
-    let xu = x.map(Ulp::of);
+) -> Result<[Vec<I>; N], super::tape::JetError> {
+    let xu = std::array::from_fn(|i| x[i].to_jet());
     let j = tape.jet_on(&xu, order, ws, side)?;
-    Ok(j.map(|c| c.into_iter().map(Ulp::interval).collect()))
+    Ok(j.map(|c| c.into_iter().map(I::from_jet).collect()))
 }
 
 /// Reusable jet storage.
-#[derive(Default)]
-pub struct Workspaces<const N: usize> {
-    pub point: Workspace<Ulp>,
-    pub apriori: Workspace<Ulp>,
-    pub dual: Workspace<Dual<Ulp, N>>,
+pub struct Workspaces<const N: usize, I: Enclosure = Interval> {
+    pub point: Workspace<I::Jet>,
+    pub apriori: Workspace<I::Jet>,
+    pub dual: Workspace<Dual<I::Jet, N>>,
     /// ρ = wid(x_K(Y)) / |x_K(X)| of the last accepted step: how much wider the remainder
     /// coefficient over the a-priori box is than over X. The first trial step is
     /// shortened by ρ^(−1/K) so that it usually passes (a choice of h only; every step is
@@ -170,67 +189,84 @@ pub struct Workspaces<const N: usize> {
     pub remainder_ratio: f64,
 }
 
+impl<const N: usize, I: Enclosure> Default for Workspaces<N, I> {
+    fn default() -> Self {
+        Self {
+            point: Workspace::default(),
+            apriori: Workspace::default(),
+            dual: Workspace::default(),
+            remainder_ratio: 0.0,
+        }
+    }
+}
+
 /// The validated half of a step: its end t1, τ-range s = [0, h], the coefficients over the box
 /// X (orders < K), the remainder coefficient x_K(Y) and the a-priori enclosure on the step.
-struct Validated<const N: usize> {
+struct Validated<const N: usize, I> {
     t1: f64,
-    cbox: Vec<[Interval; N]>,
-    rem: [Interval; N],
-    apriori: [Interval; N],
+    cbox: Vec<[I; N]>,
+    rem: [I; N],
+    apriori: [I; N],
 }
 
 /// The jet over X, the step size and the a-priori enclosure (the high-order enclosure test of
 /// the module doc), halving h while the test or the remainder's width fails.
 #[allow(clippy::too_many_arguments)]
-fn validate<const N: usize>(
-    tape: &Tape<Ulp, N>,
-    ws: &mut Workspace<Ulp>,
+fn validate<const N: usize, I: Enclosure>(
+    tape: &Tape<I::Jet, N>,
+    ws: &mut Workspace<I::Jet>,
     remainder_ratio: &mut f64,
     t0: f64,
-    x: &[Interval; N],
+    x: &[I; N],
     k: usize,
     tol: f64,
     h_max: f64,
     h_min: f64,
     side: &[i8; N],
-) -> Result<Validated<N>, TaylorFail> {
-    let jx = jet_iv(tape, x, k, ws, side).map_err(|_| TaylorFail::AtSurface)?;
+) -> Result<Validated<N, I>, TaylorFail> {
+    let jx = jet_iv::<N, I>(tape, x, k, ws, side).map_err(|_| TaylorFail::AtSurface)?;
     // step size from the decay of the last two coefficients (over X: a thin box)
     let mut h = h_max;
     let mut top_m = 0.0_f64;
     for c in &jx {
-        top_m = top_m.max(c[k].mag());
+        top_m = top_m.max(c[k].mag_f64());
         for (kk, ck) in [(k - 1, &c[k - 1]), (k, &c[k])] {
-            let m = ck.mag();
-            if m > 0.0 {
+            let m = ck.mag_f64();
+            if m > 0.0 && m.is_finite() {
                 h = h.min((tol / m).powf(1.0 / kk as f64));
+            } else if m > 0.0 {
+                // beyond f64's range (a precise type close to a branch point, where the
+                // coefficients grow like dist^−k): the same estimate through log₂
+                h = h.min(((tol.log2() - ck.mag_log2()) / kk as f64).exp2());
             }
         }
     }
     if *remainder_ratio > 1.0 {
         h = h.min(h * 0.95 * remainder_ratio.powf(-1.0 / k as f64));
     }
-    let cbox: Vec<[Interval; N]> = (0..k)
-        .map(|kk| std::array::from_fn(|i| jx[i][kk]))
+    let cbox: Vec<[I; N]> = (0..k)
+        .map(|kk| std::array::from_fn(|i| jx[i][kk].clone()))
         .collect();
-    let top: [Interval; N] = std::array::from_fn(|i| jx[i][k]);
+    let top: [I; N] = std::array::from_fn(|i| jx[i][k].clone());
     while h >= h_min {
-        let (t1, s) = step_span(t0, h);
-        let p0 = taylor_eval(&cbox, &top, s);
+        let (t1, s) = step_span::<I>(t0, h);
+        let p0 = taylor_eval(&cbox, &top, &s);
         let mut y = keep_params(inflate(&p0, 0.5, 1e-300), x, tape.params());
         // the next trial step as a fraction of h: halved unless the remainder says more
         let mut shrink = 0.5;
         for _ in 0..4 {
-            let Ok(jy) = jet_iv(tape, &y, k, ws, side) else {
+            let Ok(jy) = jet_iv::<N, I>(tape, &y, k, ws, side) else {
                 break;
             };
-            let rem: [Interval; N] = std::array::from_fn(|i| jy[i][k]);
-            let ynew = taylor_eval(&cbox, &rem, s);
+            let rem: [I; N] = std::array::from_fn(|i| jy[i][k].clone());
+            let ynew = taylor_eval(&cbox, &rem, &s);
             if subset(&ynew, &y, tape.params()) {
                 // the remainder's width is what the step adds: keep it at the tolerance
-                let hk = s.sup().powi(k as i32);
-                let tol_rem = tol.max(f64::EPSILON * 1e-3);
-                let wrem = rem.iter().map(|r| r.wid()).fold(0.0, f64::max) * hk;
+                let tol_rem = tol.max(f64::EPSILON * 1e-3 * eps_scale::<I>());
+                let wrem = rem
+                    .iter()
+                    .map(|r| scaled_width(r, s.hi(), k))
+                    .fold(0.0, f64::max);
                 if wrem.is_nan() || wrem > tol_rem {
                     // only the remainder is too wide: it scales like h^K, so aim just below
                     // the tolerance (a heuristic for the next trial; it is validated anew)
@@ -240,7 +276,16 @@ fn validate<const N: usize>(
                     break;
                 }
                 if top_m > 0.0 {
-                    *remainder_ratio = rem.iter().map(|r| r.wid()).fold(0.0, f64::max) / top_m;
+                    let ratio = rem.iter().map(|r| r.wid_f64()).fold(0.0, f64::max) / top_m;
+                    *remainder_ratio = if ratio.is_finite() {
+                        ratio
+                    } else {
+                        // coefficients beyond f64's range (a precise type near a branch
+                        // point): the ratio through log₂ (wid ≤ 2·mag)
+                        let w = rem.iter().map(|r| r.mag_log2()).fold(f64::MIN, f64::max);
+                        let top = jx.iter().map(|c| c[k].mag_log2()).fold(f64::MIN, f64::max);
+                        (w + 1.0 - top).exp2()
+                    };
                 }
                 return Ok(Validated {
                     t1,
@@ -257,27 +302,29 @@ fn validate<const N: usize>(
 }
 
 /// The mean-value half of a step: x_k(x̂) and D_k(X) = ∂x_k/∂x0 over X for k < kd.
-type MeanValue<const N: usize> = (Vec<[Interval; N]>, Vec<[[Interval; N]; N]>);
+type MeanValue<const N: usize, I> = (Vec<[I; N]>, Vec<[[I; N]; N]>);
 
-fn mean_value<const N: usize>(
-    tapes: &Tapes<N>,
-    point_ws: &mut Workspace<Ulp>,
-    dual_ws: &mut Workspace<Dual<Ulp, N>>,
-    xm: &[Interval; N],
-    x: &[Interval; N],
+fn mean_value<const N: usize, I: Enclosure>(
+    tapes: &Tapes<N, I>,
+    point_ws: &mut Workspace<I::Jet>,
+    dual_ws: &mut Workspace<Dual<I::Jet, N>>,
+    xm: &[I; N],
+    x: &[I; N],
     kd: usize,
     side: &[i8; N],
-) -> Result<MeanValue<N>, TaylorFail> {
-    let jm = jet_iv(&tapes.plain, xm, kd - 1, point_ws, side).map_err(|_| TaylorFail::AtSurface)?;
+) -> Result<MeanValue<N, I>, TaylorFail> {
+    let jm = jet_iv::<N, I>(&tapes.plain, xm, kd - 1, point_ws, side)
+        .map_err(|_| TaylorFail::AtSurface)?;
+    let xj: [I::Jet; N] = std::array::from_fn(|i| x[i].to_jet());
     let jd = tapes
         .dual
-        .jet_on(&Dual::seed(&x.map(Ulp::of)), kd - 1, dual_ws, side)
+        .jet_on(&Dual::seed(&xj), kd - 1, dual_ws, side)
         .map_err(|_| TaylorFail::AtSurface)?;
     let cm = (0..kd)
-        .map(|kk| std::array::from_fn(|i| jm[i][kk]))
+        .map(|kk| std::array::from_fn(|i| jm[i][kk].clone()))
         .collect();
     let dk = (0..kd)
-        .map(|kk| std::array::from_fn(|i| jd[i][kk].d.map(Ulp::interval)))
+        .map(|kk| std::array::from_fn(|i| jd[i][kk].d.clone().map(I::from_jet)))
         .collect();
     Ok((cm, dk))
 }
@@ -302,28 +349,34 @@ fn mean_value<const N: usize>(
 /// `rayon::join` (one thread when the pool has one, or when the other is busy: the result is
 /// the same either way).
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)] // matrix products read clearer indexed
-pub fn taylor_step<const N: usize>(
-    tapes: &Tapes<N>,
-    ws: &mut Workspaces<N>,
+pub fn taylor_step<const N: usize, I: Enclosure>(
+    tapes: &Tapes<N, I>,
+    ws: &mut Workspaces<N, I>,
     t0: f64,
-    x: &[Interval; N],
+    x: &[I; N],
     order: usize,
     kd: usize,
     tol: f64,
     h_max: f64,
     h_min: f64,
     side: &[i8; N],
-    rep: Option<&Parallelepiped<N>>,
-) -> Result<StepOut<N>, TaylorFail> {
+    rep: Option<&Parallelepiped<N, I>>,
+) -> Result<StepOut<N, I>, TaylorFail> {
     let k = order;
     // the set at t0 as c + A·r (Lohner); a plain box is c = mid X, A = I. The jets over the box
     // run over the hull of X and c (the mean-value segments from c must lie in it).
-    let boxed = Parallelepiped::from_box(x);
-    let rep = rep.unwrap_or(&boxed);
-    let xm: [Interval; N] = std::array::from_fn(|i| point(rep.c[i]));
-    let x = &std::array::from_fn(|i| x[i].convex_hull(xm[i]));
+    let boxed;
+    let rep = match rep {
+        Some(r) => r,
+        None => {
+            boxed = Parallelepiped::from_box(x);
+            &boxed
+        }
+    };
+    let xm: [I; N] = rep.c.clone();
+    let x = &std::array::from_fn(|i| x[i].hull(&xm[i]));
     let ar = rep.offsets();
-    let one = Interval::try_from((1.0, 1.0)).unwrap();
+    let one = I::one();
     let Workspaces {
         point: point_ws,
         apriori,
@@ -355,47 +408,59 @@ pub fn taylor_step<const N: usize>(
         apriori: ynew,
     } = validated?;
     // x_k(x̂) for k < kd, x_k(X) above (the whole polynomial part)
-    let cm: Vec<[Interval; N]> = cm_low
+    let cm: Vec<[I; N]> = cm_low
         .into_iter()
-        .chain(cbox[kd.min(k)..].iter().copied())
+        .chain(cbox[kd.min(k)..].iter().cloned())
         .collect();
-    let tau1 = super::flow::tau(point(t1), t0);
+    let tau1 = tau(&I::from_exact_f64(t1), t0);
     // J = Σ τ^k D_k at τ = t1 − t0, applied to X − x̂
     let mut pw = Vec::with_capacity(dk.len());
-    let mut p = one;
+    let mut p = one.clone();
     for _ in 0..dk.len() {
-        pw.push(p);
-        p *= tau1;
+        pw.push(p.clone());
+        p = p * tau1.clone();
     }
-    let jac: [[Interval; N]; N] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| interval_dot(dk.iter().zip(&pw).map(|(d, p)| (*p, d[i][j]))))
+    let jac: [[I; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            I::dot(
+                dk.iter()
+                    .zip(&pw)
+                    .map(|(d, p)| (p.clone(), d[i][j].clone())),
+            )
+        })
     });
-    let base = taylor_eval(&cm, &rem, tau1);
+    let base = taylor_eval(&cm, &rem, &tau1);
     // B = J·A; x(t1) ∈ base + B·r, kept as a parallelepiped (QR) and as a box
-    let b: [[Interval; N]; N] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| interval_dot((0..N).map(|l| (jac[i][l], point(rep.a[l][j])))))
+    let b: [[I; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            I::dot((0..N).map(|l| (jac[i][l].clone(), I::from_exact_f64(rep.a[l][j]))))
+        })
     });
     let next = Parallelepiped::advance(&base, &b, &rep.r);
     let next_hull = next.as_ref().map(|p| p.hull());
-    let x1: [Interval; N] = std::array::from_fn(|i| {
-        let acc = interval_dot(
-            std::iter::once((base[i], one)).chain((0..N).map(|j| (b[i][j], rep.r[j]))),
+    let x1: [I; N] = std::array::from_fn(|i| {
+        let acc = I::dot(
+            std::iter::once((base[i].clone(), one.clone()))
+                .chain((0..N).map(|j| (b[i][j].clone(), rep.r[j].clone()))),
         );
-        let acc = acc.intersection(ynew[i]);
+        let acc = acc.intersection(&ynew[i]);
         match &next_hull {
-            Some(h) => acc.intersection(h[i]),
+            Some(h) => acc.intersection(&h[i]),
             None => acc,
         }
     });
     // dense output: x_k(x̂) + D_k (X − x̂) per order k < kd, x_k(X) above
-    let coefs: Vec<[Interval; N]> = cm
+    let coefs: Vec<[I; N]> = cm
         .iter()
         .enumerate()
         .map(|(kk, c)| match dk.get(kk) {
             Some(d) => std::array::from_fn(|i| {
-                interval_dot(std::iter::once((c[i], one)).chain((0..N).map(|j| (d[i][j], ar[j]))))
+                I::dot(
+                    std::iter::once((c[i].clone(), one.clone()))
+                        .chain((0..N).map(|j| (d[i][j].clone(), ar[j].clone()))),
+                )
             }),
-            None => *c,
+            None => c.clone(),
         })
         .collect();
     Ok(StepOut {
@@ -430,49 +495,53 @@ pub enum KinkCut {
 /// piece, g′ = f_i of the continued field over the piece's enclosure) or away from it
 /// (s·g′ > 0: no crossing); a zero of a monotone g is enclosed by interval Newton
 /// N(T) = m − g(m)/g′(T), proved when N(T) ⊆ int T, and the piece is cut at its lower end.
-pub fn cut_at_kinks<const N: usize>(
-    tape: &Tape<Interval, N>,
-    out: &StepOut<N>,
+pub fn cut_at_kinks<const N: usize, I: Enclosure>(
+    tape: &Tape<I, N>,
+    out: &StepOut<N, I>,
     side: &[i8; N],
 ) -> KinkCut {
     let (t0, t1) = (out.piece.t0(), out.piece.t1());
-    let whole = Interval::try_from((t0, t1)).unwrap();
+    let whole = I::from_bounds(t0, t1).expect("a piece's times");
     let mut cut = t1;
     for &i in tape.kinks() {
         let s = side[i] as f64;
         if side[i] == 0 {
             continue;
         }
-        if (s > 0.0 && out.apriori[i].inf() > 0.0) || (s < 0.0 && out.apriori[i].sup() < 0.0) {
+        if (s > 0.0 && out.apriori[i].lo() > 0.0) || (s < 0.0 && out.apriori[i].hi() < 0.0) {
             continue;
         }
-        let rate = |t: Interval| tape.eval_on(&out.piece.enclose(t), side)[i];
+        let rate = |t: &I| tape.eval_on(&out.piece.enclose(t), side).swap_remove(i);
         // the rate of s·x_i (exact: s = ±1), so that one test serves both sides
-        let d = rate(whole);
+        let d = rate(&whole);
         let sd = if side[i] > 0 { d } else { -d };
         if sd.is_empty() {
             return KinkCut::Unresolved;
         }
-        if sd.inf() > 0.0 {
+        if sd.lo() > 0.0 {
             continue; // moving away from 0 all along: s·x_i stays ≥ s·x_i(t0) > 0
         }
         // neither away (above) nor provably towards 0: unresolved (sd is not empty, so its
         // bounds are numbers)
-        if sd.sup() >= 0.0 {
+        if sd.hi() >= 0.0 {
             return KinkCut::Unresolved;
         }
         // towards 0: is the end still on the side?
-        let g1 = out.piece.enclose(point(t1))[i];
-        if (s > 0.0 && g1.inf() > 0.0) || (s < 0.0 && g1.sup() < 0.0) {
+        let g1 = out.piece.enclose(&I::from_exact_f64(t1))[i].clone();
+        if (s > 0.0 && g1.lo() > 0.0) || (s < 0.0 && g1.hi() < 0.0) {
             continue;
         }
         // interval Newton for the zero of g on T (g′ = rate keeps the sign proved above)
-        let t = match interval_newton(whole, |m| out.piece.enclose(point(m))[i], |t| Some(rate(t)))
-        {
+        let t = match interval_newton(
+            whole.clone(),
+            |m| out.piece.enclose(m)[i].clone(),
+            |t| Some(rate(t)),
+        ) {
             Newton::Root(t) => t,
             Newton::NoRoot | Newton::Undecided => return KinkCut::Unresolved,
         };
-        cut = cut.min(t.inf());
+        // the piece is the true flow up to the crossing: cut at a double at or below it
+        cut = cut.min(t.lo());
     }
     if cut < t1 {
         KinkCut::Before(cut)
@@ -491,39 +560,44 @@ pub fn jacobian_orders(order: usize) -> usize {
 
 /// A low-order step from (t0, X) of length h: validates Y ⊇ X + \[0,h\]·f(Y) and returns the
 /// piece X + τ f(Y). `None` when no a-priori box validates at this h.
-pub fn low_order_step<const N: usize>(
-    tape: &Tape<Interval, N>,
+pub fn low_order_step<const N: usize, I: Enclosure>(
+    tape: &Tape<I, N>,
     t0: f64,
-    x: &[Interval; N],
+    x: &[I; N],
     h: f64,
-) -> Option<StepOut<N>> {
-    let (t1, s) = step_span(t0, h);
-    let field = |y: &[Interval; N]| -> [Interval; N] {
-        let v = tape.eval(y);
-        std::array::from_fn(|i| v[i])
+) -> Option<StepOut<N, I>> {
+    let (t1, s) = step_span::<I>(t0, h);
+    let field = |y: &[I; N]| -> [I; N] {
+        let mut v = tape.eval(y);
+        v.truncate(N);
+        v.try_into().expect("N field components")
     };
     let f0 = field(x);
     let params = tape.params();
     let mut y = keep_params(
-        inflate(&std::array::from_fn(|i| x[i] + s * f0[i]), 1.0, 1e-300),
+        inflate(
+            &std::array::from_fn(|i| x[i].clone() + s.clone() * f0[i].clone()),
+            1.0,
+            1e-300,
+        ),
         x,
         params,
     );
     for _ in 0..6 {
         let fy = field(&y);
-        let ynew: [Interval; N] = std::array::from_fn(|i| x[i] + s * fy[i]);
-        if ynew.iter().all(|c| c.is_common_interval()) && subset(&ynew, &y, params) {
+        let ynew: [I; N] = std::array::from_fn(|i| x[i].clone() + s.clone() * fy[i].clone());
+        if ynew.iter().all(|c| c.is_finite()) && subset(&ynew, &y, params) {
             let fy2 = field(&ynew);
             // f over the tighter box encloses f(Φ) too (Φ stays in ynew)
-            let slope: [Interval; N] = std::array::from_fn(|i| fy[i].intersection(fy2[i]));
-            let tau1 = super::flow::tau(point(t1), t0);
-            let x1 = std::array::from_fn(|i| x[i] + tau1 * slope[i]);
+            let slope: [I; N] = std::array::from_fn(|i| fy[i].intersection(&fy2[i]));
+            let tau1 = tau(&I::from_exact_f64(t1), t0);
+            let x1 = std::array::from_fn(|i| x[i].clone() + tau1.clone() * slope[i].clone());
             return Some(StepOut {
                 rep: None,
                 piece: Piece::LowOrder {
                     t0,
                     t1,
-                    x0: *x,
+                    x0: x.clone(),
                     slope,
                 },
                 x1,
@@ -538,18 +612,18 @@ pub fn low_order_step<const N: usize>(
 }
 
 /// The widest component of a box.
-pub fn width<const N: usize>(x: &[Interval; N]) -> f64 {
-    x.iter().map(|c| c.wid()).fold(0.0, f64::max)
+pub fn width<const N: usize, I: Enclosure>(x: &[I; N]) -> f64 {
+    x.iter().map(|c| c.wid_f64()).fold(0.0, f64::max)
 }
 
 /// The largest magnitude of a component.
-pub fn magnitude<const N: usize>(x: &[Interval; N]) -> f64 {
-    x.iter().map(|c| c.mag()).fold(0.0, f64::max)
+pub fn magnitude<const N: usize, I: Enclosure>(x: &[I; N]) -> f64 {
+    x.iter().map(|c| c.mag_f64()).fold(0.0, f64::max)
 }
 
 /// True when every component is a bounded interval.
-pub fn bounded<const N: usize>(x: &[Interval; N]) -> bool {
-    x.iter().all(|c| c.is_common_interval())
+pub fn bounded<const N: usize, I: Enclosure>(x: &[I; N]) -> bool {
+    x.iter().all(|c| c.is_finite())
 }
 
 #[cfg(test)]
@@ -613,7 +687,7 @@ mod tests {
             let c = c.0 + (c.1 - c.0) * j as f64 / 10.0;
             for i in 0..=20 {
                 let t = t1 * i as f64 / 20.0;
-                let enc = out.piece.enclose(point(t));
+                let enc = out.piece.enclose(&point(t));
                 let x = kink_toy_x(c, v0, t);
                 let v = v0 + c * t;
                 assert!(
@@ -673,7 +747,7 @@ mod tests {
             if h == 0.0 {
                 continue;
             }
-            let (t1, s) = step_span(t0, h);
+            let (t1, s) = step_span::<Interval>(t0, h);
             let exact = Rational::from_f64(t1).unwrap() - Rational::from_f64(t0).unwrap();
             assert!(s.inf() == 0.0);
             if Rational::from_f64(s.sup()).unwrap() < exact {

@@ -41,11 +41,12 @@ use super::flow::{point, tau};
 use super::lohner::Parallelepiped;
 use super::step::{StepOut, low_order_step};
 use super::tape::Tape;
-use crate::arith::Real;
 use crate::arith::interval::dot::interval_dot;
 use crate::arith::jet::dual::Dual;
+use crate::arith::{Enclosure, Real};
 use inari::{Interval, const_interval};
 use puiseux::{Basis, Ctx, Gts};
+use std::any::Any;
 use std::sync::Arc;
 
 const ZERO: Interval = const_interval!(0.0, 0.0);
@@ -338,7 +339,7 @@ pub fn crossing_step<const N: usize>(
     let clock = std::time::Instant::now();
     let trace = std::env::var_os("BWCL_TRACE_SING").is_some();
     let p = rep.cloned().unwrap_or_else(|| Parallelepiped::from_box(x0));
-    let c: [Interval; N] = p.c.map(point);
+    let c: [Interval; N] = p.c;
     let cp = cross_point(st, tape, t0, &c, w, opts, None);
     if trace {
         eprintln!(
@@ -355,7 +356,7 @@ pub fn crossing_step<const N: usize>(
     if !d.iter().flatten().all(|x| x.is_common_interval()) {
         return None;
     }
-    let tau1 = tau(point(t1), t0);
+    let tau1 = tau(&point(t1), t0);
     let norm = d
         .iter()
         .map(|row| row.iter().fold(ZERO, |s, x| s + point(x.mag())))
@@ -400,6 +401,62 @@ pub fn crossing_step<const N: usize>(
         apriori: y,
         rep: rep1,
     })
+}
+
+/// The singular step as the engine's loop uses it: made for the f64-interval engine (any other
+/// enclosure type gets `None` from [`Singular::new`]), with the retry rule after a refusal.
+pub struct Singular<const N: usize> {
+    st: SingularTape<N>,
+    tape: Tape<Interval, N>,
+    dual: Tape<Dual<Interval, N>, N>,
+    opts: SingularOptions,
+    /// After a refused step the next try waits until the surface is this near.
+    retry: f64,
+}
+
+impl<const N: usize> Singular<N> {
+    pub fn new<I: Enclosure>(tape: &Tape<I, N>) -> Option<Self> {
+        let tape = (tape as &dyn Any).downcast_ref::<Tape<Interval, N>>()?;
+        let opts = SingularOptions::default();
+        Some(Self {
+            st: SingularTape::of(tape, &opts)?,
+            dual: tape.map(|c| Dual::constant(*c)),
+            tape: tape.clone(),
+            opts,
+            retry: f64::INFINITY,
+        })
+    }
+
+    /// [`crossing_step`] across component `w`, `h` the time it needs to reach 0 at its
+    /// fastest; `None` while a refused step waits to be nearer.
+    pub fn try_step<I: Enclosure>(
+        &mut self,
+        t0: f64,
+        x0: &[I; N],
+        rep: Option<&Parallelepiped<N, I>>,
+        w: usize,
+        h: f64,
+    ) -> Option<StepOut<N, I>> {
+        if h >= self.retry {
+            return None;
+        }
+        let x0 = (x0 as &dyn Any).downcast_ref::<[Interval; N]>()?;
+        let rep = match rep {
+            Some(r) => Some((r as &dyn Any).downcast_ref::<Parallelepiped<N, Interval>>()?),
+            None => None,
+        };
+        let out = crossing_step(&self.st, &self.tape, &self.dual, t0, x0, rep, w, &self.opts);
+        if out.is_none() {
+            self.retry = h / 4.0;
+        }
+        let b: Box<dyn Any> = Box::new(out?);
+        b.downcast::<StepOut<N, I>>().ok().map(|b| *b)
+    }
+
+    /// Records whether the caller took the step (a refusal waits until 4× nearer).
+    pub fn taken(&mut self, ok: bool, h: f64) {
+        self.retry = if ok { f64::INFINITY } else { h / 4.0 };
+    }
 }
 
 #[cfg(test)]

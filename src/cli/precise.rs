@@ -1,0 +1,209 @@
+//! `bwcl cor --rigorous --digits D`: the rigorous engine at a chosen precision
+//! ([`bwcl::observables::precision`]), its bounds printed with every digit their width allows,
+//! lo rounded down and hi up, in the table, CSV and JSON (numbers as exact decimal text).
+
+use super::args::{CorArgs, Format};
+use super::input;
+use super::output::{csv, table};
+use super::{CliError, EXIT_FAILED, EXIT_OK, note};
+use bwcl::models::ModelKind;
+use bwcl::observables::precision::{
+    ParamText, PreciseEnclosure, bits_for_digits, outward_text, rigorous_impact_digits, width_text,
+};
+use bwcl::observables::sets;
+use inari::Interval;
+use rayon::prelude::*;
+
+/// One case: its v0 as written (or "-") and the proved enclosure or why not.
+struct Row {
+    v0: String,
+    res: Result<PreciseEnclosure, String>,
+}
+
+/// The cases of --nd or --base/--v0 as texts (validated by the usual parser first, so bad input
+/// gets its usual message); ranges and --physical are refused.
+fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
+    let checked = input::cases::<Interval>(&a.params)?;
+    if checked
+        .iter()
+        .any(|c| c.inputs.values().iter().any(sets::is_range))
+    {
+        return Err(CliError::Input(
+            "--digits proves single values: inputs given as ranges (a..b) are not supported with it".into(),
+        ));
+    }
+    if let Some(t) = &a.params.nd {
+        return Ok(vec![("-".into(), ParamText::Nd(t.clone()))]);
+    }
+    match (&a.params.base, &a.params.v0) {
+        (Some(b), Some(v)) => Ok(v
+            .split(',')
+            .map(|tok| {
+                let tok = tok.trim().to_string();
+                (
+                    tok.clone(),
+                    ParamText::Base {
+                        base: b.clone(),
+                        v0: tok,
+                    },
+                )
+            })
+            .collect()),
+        _ => Err(CliError::Input(
+            "--digits supports --nd and --base with --v0 (not --physical)".into(),
+        )),
+    }
+}
+
+/// Runs `cor --rigorous --digits D`; `Ok` carries the exit code.
+pub fn cor(a: &CorArgs, digits: usize) -> Result<i32, CliError> {
+    if a.sensitivities {
+        return Err(CliError::Input(
+            "--sensitivities is not supported with --digits".into(),
+        ));
+    }
+    let d = digits as u32;
+    let bits = bits_for_digits(d)
+        .ok_or_else(|| CliError::Input(format!("--digits {digits}: must be in 1..=100")))?;
+    input::out_path(a.out.as_deref())?;
+    let opts = input::taylor_options(&a.engine)?;
+    let kind = ModelKind::from(a.params.model);
+    let cases = cases(a)?;
+    let start = std::time::Instant::now();
+    let rows: Vec<Row> = cases
+        .par_iter()
+        .map(|(v0, p)| Row {
+            v0: v0.clone(),
+            res: rigorous_impact_digits(kind, p, d, &opts).map_err(|e| e.to_string()),
+        })
+        .collect();
+    let elapsed = start.elapsed();
+    let failed = rows.iter().filter(|r| r.res.is_err()).count();
+    let bytes = render(kind, &rows, bits, a.format)?;
+    let timing = || {
+        if a.timing {
+            let s = elapsed.as_secs_f64();
+            note(&format!(
+                "bwcl: timing: {} case(s) in {s:.6} s, {:.3} µs per case ({} thread(s)), {bits} bits",
+                rows.len(),
+                s / rows.len().max(1) as f64 * 1e6,
+                rayon::current_num_threads()
+            ));
+        }
+    };
+    if failed == 0 {
+        super::output::emit(a.out.as_deref(), &bytes)?;
+        timing();
+        return Ok(EXIT_OK);
+    }
+    super::output::emit(None, &bytes)?;
+    timing();
+    note(&format!(
+        "bwcl: {failed} of {} case(s) not proved (the reason is in the output)",
+        rows.len()
+    ));
+    Ok(EXIT_FAILED)
+}
+
+/// The cells of a proved row: ts lo, hi, width, e lo, hi, width.
+fn cells(p: &PreciseEnclosure) -> [String; 6] {
+    let (tl, th) = outward_text(&p.ts, p.bits);
+    let (el, eh) = outward_text(&p.e, p.bits);
+    [
+        tl,
+        th,
+        width_text(&p.width_ts()),
+        el,
+        eh,
+        width_text(&p.width_e()),
+    ]
+}
+
+fn json_str(s: &str) -> String {
+    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into())
+}
+
+fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Vec<u8>, CliError> {
+    match format {
+        Format::Table => {
+            let head = [
+                "model", "v0", "ts", "width_ts", "e", "width_e", "bits", "pieces",
+            ];
+            let body: Vec<Vec<String>> = rows
+                .iter()
+                .map(|r| {
+                    let mut c = vec![kind.name().to_string(), r.v0.clone()];
+                    match &r.res {
+                        Ok(p) => {
+                            let [tl, th, tw, el, eh, ew] = cells(p);
+                            c.extend([
+                                format!("[{tl}, {th}]"),
+                                tw,
+                                format!("[{el}, {eh}]"),
+                                ew,
+                                p.bits.to_string(),
+                                p.pieces.to_string(),
+                            ]);
+                        }
+                        Err(e) => c.push(e.clone()),
+                    }
+                    c
+                })
+                .collect();
+            Ok(table(&head, &body).into_bytes())
+        }
+        Format::Csv => {
+            let head = [
+                "model", "v0", "proved", "ts_lo", "ts_hi", "width_ts", "e_lo", "e_hi", "width_e",
+                "bits", "pieces", "reason",
+            ];
+            let body = rows.iter().map(|r| {
+                let mut c = vec![kind.name().to_string(), r.v0.clone()];
+                match &r.res {
+                    Ok(p) => {
+                        c.push("true".into());
+                        c.extend(cells(p));
+                        c.extend([p.bits.to_string(), p.pieces.to_string(), String::new()]);
+                    }
+                    Err(e) => {
+                        c.push("false".into());
+                        c.extend(std::iter::repeat_n(String::new(), 6));
+                        c.extend([bits.to_string(), String::new(), e.clone()]);
+                    }
+                }
+                c
+            });
+            csv(&head, body)
+        }
+        Format::Json => {
+            let objs: Vec<String> = rows
+                .iter()
+                .map(|r| {
+                    let v0 = if r.v0 == "-" {
+                        "null".to_string()
+                    } else {
+                        json_str(&r.v0)
+                    };
+                    let common = format!(
+                        "\"model\": {}, \"v0\": {v0}, \"bits\": {bits}",
+                        json_str(kind.name())
+                    );
+                    match &r.res {
+                        Ok(p) => {
+                            let [tl, th, tw, el, eh, ew] = cells(p);
+                            format!(
+                                "  {{{common}, \"proved\": true, \"ts\": [{tl}, {th}], \"width_ts\": {tw}, \"e\": [{el}, {eh}], \"width_e\": {ew}, \"pieces\": {}}}",
+                                p.pieces
+                            )
+                        }
+                        Err(e) => format!(
+                            "  {{{common}, \"proved\": false, \"reason\": {}}}",
+                            json_str(e)
+                        ),
+                    }
+                })
+                .collect();
+            Ok(format!("[\n{}\n]\n", objs.join(",\n")).into_bytes())
+        }
+    }
+}

@@ -1,0 +1,255 @@
+//! The rigorous engine at a chosen precision: T_s and e proved to D digits on intervals over
+//! MPFR floats ([`Mpi`]), the same algorithm as the f64-interval engine
+//! ([`crate::engines::taylor`], generic over [`crate::arith::Enclosure`]).
+//!
+//! **Precision.** D digits need about D·log₂10 ≈ 3.33·D bits for the result plus what the
+//! integration loses (the widths grow by ~10²–10³ over a CoR, rounding errors add up over
+//! ~10³ steps): the engine runs at the smallest tier of [`TIERS`] with
+//! BITS ≥ ⌈3.33·D⌉ + [`MARGIN_BITS`] (D = 30: 128 bits, D = 60: 256 bits, D ≤ 100: 384).
+//!
+//! **Tunables follow the precision** ([`options_for_digits`]), with the f64 engine's (D ≈ 15)
+//! as the anchor:
+//! - tol = 10^−(D+3) per step (f64: 10⁻¹⁵ gives e ≈ 10⁻¹³ wide: the width ends ~100× tol);
+//! - cross_tol = 10^−(D+4), a decade below tol (f64: 10⁻¹⁶);
+//! - the Taylor order K = max(16, D): the cost of a step grows like K², the number of steps
+//!   like tol^(−1/K); K ≈ −ln(tol)/2 balances the two (16 at D ≈ 15, as measured there);
+//! - low-order steps (across the branch points X = Z = 0) add width ≈ h² (the first-order
+//!   form: τ·f(Y) with f varying ≈ L·h|f| over the a-priori box) and ≈ h^(1+a) (a branch
+//!   exponent): min_taylor_step = √cross_tol (f64: 10⁻⁸), the first trial low_order_step
+//!   10× that, and the shortest tried 10⁻¹⁸ (the step ends are doubles: near T ≈ 3 a step
+//!   cannot be shorter than ≈ 4.4·10⁻¹⁶, which bounds what a crossing adds, see below);
+//! - event_slack, horizon, max_width as given; max_steps ×10.
+//!
+//! **Limit of the f64 step times.** The times of step boundaries are doubles, so a low-order
+//! step across a branch point away from T = 0 is at least an ulp of T long (≈ 2–4·10⁻¹⁶ at
+//! T ≈ 1–3) and adds at least ≈ that squared to the width: about 10⁻³¹. 30 digits are within
+//! reach; 60 are not without the singular expansions at the branch points (issue #15, 1).
+
+use crate::arith::mpfr::Mpi;
+use crate::engines::taylor::{RigorError, TaylorOptions, integrate_to_separation};
+use crate::models::scaling::nd_from_base;
+use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use crate::observables::decimal::{Rounding, directed_rational};
+use rug::{Float, Rational};
+
+/// The precisions the engine is compiled at (bits of the MPFR ends).
+pub const TIERS: [u32; 4] = [128, 192, 256, 384];
+/// Bits beyond ⌈D·log₂10⌉ for what the integration loses (measured: see the module doc).
+pub const MARGIN_BITS: u32 = 24;
+/// The most digits asked for (the largest tier holds ≈ 115).
+pub const MAX_DIGITS: u32 = 100;
+
+/// The tier for D digits: the smallest with BITS ≥ ⌈3.33·D⌉ + margin; `None` for D = 0 or
+/// D > [`MAX_DIGITS`].
+pub fn bits_for_digits(digits: u32) -> Option<u32> {
+    if digits == 0 || digits > MAX_DIGITS {
+        return None;
+    }
+    let need = (digits as f64 * std::f64::consts::LOG2_10).ceil() as u32 + MARGIN_BITS;
+    TIERS.iter().copied().find(|&b| b >= need)
+}
+
+/// The engine's tunables for D digits (the rule of the module doc), from `base` (its horizon,
+/// max_width, event_slack, qr and mean-value orders are kept).
+pub fn options_for_digits(digits: u32, base: &TaylorOptions) -> TaylorOptions {
+    let d = digits as i32;
+    let tol = 10f64.powi(-(d + 3));
+    let cross_tol = 10f64.powi(-(d + 4));
+    let min_taylor_step = cross_tol.sqrt();
+    TaylorOptions {
+        order: (digits as usize).max(16),
+        tol,
+        cross_tol,
+        min_taylor_step,
+        low_order_step: 10.0 * min_taylor_step,
+        min_low_order_step: 1e-18,
+        max_steps: base.max_steps * 10,
+        ..base.clone()
+    }
+}
+
+/// A proved T_s and e at a precision: the exact ends of the enclosures.
+#[derive(Clone, Debug)]
+pub struct PreciseEnclosure {
+    /// The precision the proof ran at (bits of the MPFR ends).
+    pub bits: u32,
+    pub ts: [Rational; 2],
+    pub e: [Rational; 2],
+    /// Pieces of the proved flow.
+    pub pieces: usize,
+}
+
+impl PreciseEnclosure {
+    /// hi − lo of T_s, exactly.
+    pub fn width_ts(&self) -> Rational {
+        Rational::from(&self.ts[1] - &self.ts[0])
+    }
+    /// hi − lo of e, exactly.
+    pub fn width_e(&self) -> Rational {
+        Rational::from(&self.e[1] - &self.e[0])
+    }
+}
+
+fn ends<const B: u32>(x: &Mpi<B>) -> Option<[Rational; 2]> {
+    Some([x.inf().to_rational()?, x.sup().to_rational()?])
+}
+
+/// [`integrate_to_separation`] on `Mpi<B>` for a model built at that precision.
+pub fn rigorous_impact_mp<const B: u32, M: CollisionModel<Mpi<B>, N> + Sync, const N: usize>(
+    model: &M,
+    opts: &TaylorOptions,
+) -> Result<PreciseEnclosure, RigorError> {
+    let (flow, ev) = integrate_to_separation::<Mpi<B>, M, N>(model, opts)?;
+    match (ends(&ev.ts), ends(&ev.e)) {
+        (Some(ts), Some(e)) => Ok(PreciseEnclosure {
+            bits: B,
+            ts,
+            e,
+            pieces: flow.len(),
+        }),
+        _ => Err(RigorError {
+            reason: "the enclosure of T_s or e is unbounded".into(),
+            t: flow.t_end(),
+            width: f64::INFINITY,
+        }),
+    }
+}
+
+/// The parameters of a case as written: what is enclosed anew at each precision.
+#[derive(Clone, Debug)]
+pub enum ParamText {
+    /// A nondimensional set P = (B, Γ, κ, σ, n, p), e.g. `"1e-300,0,0.5,12,1.5,1.5"`.
+    Nd(String),
+    /// A base set P* and an impact speed v0 [m/s], mapped by 𝓟(P*, v0).
+    Base { base: String, v0: String },
+}
+
+impl ParamText {
+    /// The parameters enclosed in the number type `R`.
+    pub fn params<R: crate::arith::Real>(&self, kind: ModelKind) -> Result<NdParams<R>, String> {
+        match self {
+            ParamText::Nd(t) => NdParams::<R>::parse(kind, t).map_err(|e| e.0),
+            ParamText::Base { base, v0 } => {
+                let b = NdParams::<R>::parse(kind, base).map_err(|e| e.0)?;
+                let v = R::parse_decimal(v0.trim())?;
+                nd_from_base(kind, &b, &v).map_err(|e| e.0)
+            }
+        }
+    }
+}
+
+fn prove_at<const B: u32>(
+    kind: ModelKind,
+    p: &ParamText,
+    opts: &TaylorOptions,
+) -> Result<PreciseEnclosure, RigorError> {
+    let params = p.params::<Mpi<B>>(kind).map_err(|reason| RigorError {
+        reason,
+        t: 0.0,
+        width: 0.0,
+    })?;
+    match kind {
+        ModelKind::Shc => rigorous_impact_mp::<B, _, 3>(&Shc::new(params), opts),
+        ModelKind::Maxwell => rigorous_impact_mp::<B, _, 4>(&Maxwell::new(params), opts),
+    }
+}
+
+/// Proves T_s and e of a case at precision `bits` (one of [`TIERS`]) with the tunables `opts`.
+pub fn rigorous_impact_bits(
+    kind: ModelKind,
+    p: &ParamText,
+    bits: u32,
+    opts: &TaylorOptions,
+) -> Result<PreciseEnclosure, RigorError> {
+    match bits {
+        128 => prove_at::<128>(kind, p, opts),
+        192 => prove_at::<192>(kind, p, opts),
+        256 => prove_at::<256>(kind, p, opts),
+        384 => prove_at::<384>(kind, p, opts),
+        _ => Err(RigorError {
+            reason: format!("no engine at {bits} bits (tiers: {TIERS:?})"),
+            t: 0.0,
+            width: 0.0,
+        }),
+    }
+}
+
+/// Proves T_s and e of a case to D digits: at the tier [`bits_for_digits`]`(D)` with the
+/// tunables [`options_for_digits`]`(D, base)`.
+pub fn rigorous_impact_digits(
+    kind: ModelKind,
+    p: &ParamText,
+    digits: u32,
+    base: &TaylorOptions,
+) -> Result<PreciseEnclosure, RigorError> {
+    let bits = bits_for_digits(digits).ok_or_else(|| RigorError {
+        reason: format!("{digits} digits: 1 ≤ D ≤ {MAX_DIGITS}"),
+        t: 0.0,
+        width: 0.0,
+    })?;
+    rigorous_impact_bits(kind, p, bits, &options_for_digits(digits, base))
+}
+
+/// How many significant digits of [lo, hi] to print: every digit the width allows, i.e. up to
+/// the first decade of the width (two more than where lo and hi part), at most what `bits`
+/// hold.
+pub fn digits_shown(lo: &Rational, hi: &Rational, bits: u32) -> usize {
+    let most = (bits as f64 * std::f64::consts::LOG10_2).floor() as usize;
+    let mag = Float::with_val(64, lo.clone().abs()).max(&Float::with_val(64, hi.clone().abs()));
+    let w = Float::with_val(64, Rational::from(hi - lo));
+    if mag.is_zero() {
+        return 1;
+    }
+    if w.is_zero() {
+        return most;
+    }
+    let d = (mag / w).log10().to_f64().ceil() as i64 + 2;
+    d.clamp(1, most as i64) as usize
+}
+
+/// [lo, hi] as two scientific decimals with [`digits_shown`] digits, lo rounded down and hi
+/// up (printed bounds are bounds).
+pub fn outward_text(ends: &[Rational; 2], bits: u32) -> (String, String) {
+    let d = digits_shown(&ends[0], &ends[1], bits);
+    (
+        directed_rational(&ends[0], d, Rounding::Down).scientific(d),
+        directed_rational(&ends[1], d, Rounding::Up).scientific(d),
+    )
+}
+
+/// A width as a short decimal rounded up (3 digits).
+pub fn width_text(w: &Rational) -> String {
+    directed_rational(w, 3, Rounding::Up).scientific(3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiers_follow_the_digits() {
+        assert_eq!(bits_for_digits(0), None);
+        assert_eq!(bits_for_digits(1), Some(128));
+        assert_eq!(bits_for_digits(30), Some(128));
+        assert_eq!(bits_for_digits(31), Some(128));
+        assert_eq!(bits_for_digits(32), Some(192));
+        assert_eq!(bits_for_digits(60), Some(256));
+        assert_eq!(bits_for_digits(100), Some(384));
+        assert_eq!(bits_for_digits(101), None);
+    }
+
+    #[test]
+    fn printed_ends_are_outward_and_as_long_as_the_width_allows() {
+        let lo = Rational::from((1, 3)) - Rational::from((1, 1_000_000_000_000u64));
+        let hi = Rational::from((1, 3)) + Rational::from((1, 1_000_000_000_000u64));
+        let (l, h) = outward_text(&[lo.clone(), hi.clone()], 128);
+        let (lr, hr) = (
+            crate::observables::decimal::parse_rational(&l).unwrap(),
+            crate::observables::decimal::parse_rational(&h).unwrap(),
+        );
+        assert!(lr <= lo && hi <= hr, "{l} {h}");
+        // width 2e-12 around 1/3: 12 digits part them, two more are shown
+        assert_eq!(digits_shown(&lo, &hi, 128), 14);
+        assert!(l.starts_with("3.3333333333") && h.starts_with("3.3333333333"));
+    }
+}
