@@ -441,7 +441,17 @@ impl<const B: u32> Mpi<B> {
         if self.is_empty() || y.is_empty() {
             return Self::empty();
         }
-        let (a, b, c, d) = (&self.lo, &self.hi, &y.lo, &y.hi);
+        // a zero end as +0: MPFR's (−0)^y is −∞ for an odd integer y < 0 (−0 arises as an
+        // exact zero rounded down, e.g. x − x)
+        let pos = |x: &Float| {
+            if x.is_zero() {
+                Float::new(B)
+            } else {
+                x.clone()
+            }
+        };
+        let (a, b) = (&pos(&self.lo), &pos(&self.hi));
+        let (c, d) = (&y.lo, &y.hi);
         let p = |x: &Float, e: &Float, r: Round| rnd(B, x.pow(e), r);
         let lo = if *c >= 0 {
             p(a, if *a >= 1 { c } else { d }, DOWN)
@@ -1491,6 +1501,15 @@ mod tests {
         assert!(r.lo == 0 && r.hi == 1, "{r}");
         let r = Real::pow(&iv("0", "2"), &iv("-1", "1"));
         assert!(r.lo == 0 && r.hi.is_infinite(), "{r}");
+        // a lower end −0 (an exact zero rounded down: 1 − 1) is 0: (−0)^(−1) is not −∞ here
+        let z = M::from_int(1) - M::from_int(1);
+        assert!(z.lo.is_zero() && z.lo.is_sign_negative());
+        let x = M::new(z.lo.clone(), f(2.0));
+        for e in [iv("-1", "1"), M::from_int(-1), iv("-3", "-1")] {
+            let r = Real::pow(&x, &e);
+            assert!(r.hi.is_infinite() && r.hi > 0, "{x}^{e} = {r}");
+        }
+        assert!(x.apow(&M::from_int(-1)).hi.is_infinite());
         let r = iv("-1", "4").sqrt();
         assert!(r.lo == 0 && r.hi == 2);
         assert!(iv("-2", "-1").sqrt().is_empty());
