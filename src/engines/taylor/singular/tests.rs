@@ -87,7 +87,7 @@ fn check_shear(p: &str) {
         let (_, z) = cross_point(&st, &tape, 0.0, &c, 0, &opts, Some(t1)).expect("point");
         for (i, (zi, xi)) in z.iter().zip(&out.x1).enumerate() {
             assert!(
-                zi.subset(*xi),
+                Interval::subset(*zi, *xi),
                 "p = {p}, v0 = {v}: component {i}: {zi:?} not in {xi:?}"
             );
         }

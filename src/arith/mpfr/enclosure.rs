@@ -2,9 +2,9 @@
 //! at a chosen precision. The jets run on the type itself; sums of products on its plain
 //! accumulator (each product and sum rounded outward).
 
-use super::enclosure::Enclosure;
-use super::mpfr::Mpi;
-use super::real::Real;
+use super::Mpi;
+use crate::arith::enclosure::Enclosure;
+use crate::arith::real::Real;
 use rug::Float;
 
 impl<const B: u32> Enclosure for Mpi<B> {

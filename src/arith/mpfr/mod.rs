@@ -19,7 +19,9 @@
 //! right or +∞ on the left. Decimal input is enclosed as written (exact value by `rug::Rational`,
 //! rounded outward once); printed ends are rounded outward ([`Mpi::to_decimal`]).
 
-use super::real::{PlainDot, Real};
+mod enclosure;
+
+use crate::arith::real::{PlainDot, Real};
 use inari::Interval;
 use rug::float::{Round, Special};
 use rug::ops::{AddAssignRound, DivAssignRound, NegAssign, Pow, SubAssignRound};
