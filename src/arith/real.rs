@@ -218,3 +218,16 @@ impl<R: Real> Dot<R> for PlainDot<R> {
         self.0.unwrap_or_else(R::zero)
     }
 }
+
+/// Refuses what is not a plain decimal literal (digits, '.', signs, an exponent), before an
+/// interval type encloses it: "[1,2]", "inf" or "" are not parameters. `t` is trimmed.
+pub fn check_plain_decimal(t: &str) -> Result<(), String> {
+    let ok = !t.is_empty()
+        && t.chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'));
+    if ok {
+        Ok(())
+    } else {
+        Err(format!("'{t}' is not a decimal number"))
+    }
+}

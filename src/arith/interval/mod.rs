@@ -21,12 +21,7 @@ pub fn enclose_decimal(s: &str) -> Result<Interval, String> {
     let t = s.trim();
     // inari's grammar takes a bracketed literal; reject what is not a plain decimal first so that
     // e.g. "[1,2]" or "inf" are not silently accepted as parameters.
-    let ok = !t.is_empty()
-        && t.chars()
-            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'));
-    if !ok {
-        return Err(format!("'{t}' is not a decimal number"));
-    }
+    crate::arith::real::check_plain_decimal(t)?;
     let x: Interval = format!("[{t}]")
         .parse()
         .map_err(|_| format!("'{t}' is not a decimal number"))?;

@@ -492,12 +492,7 @@ impl<const B: u32> Mpi<B> {
 /// Encloses a decimal literal exactly as written (tightest at B bits).
 pub fn enclose_decimal<const B: u32>(s: &str) -> Result<Mpi<B>, String> {
     let t = s.trim();
-    let ok = !t.is_empty()
-        && t.chars()
-            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'));
-    if !ok {
-        return Err(format!("'{t}' is not a decimal number"));
-    }
+    crate::arith::real::check_plain_decimal(t)?;
     let r = decimal_value(t)?;
     let x = Mpi::<B>::checked(rnd(B, &r, DOWN), rnd(B, &r, UP));
     if !x.is_finite() {
