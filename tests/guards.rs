@@ -373,7 +373,7 @@ fn scan_outputs(
     .ok()
     .expect("s′ = 1 steps exactly");
     assert_eq!(out.piece.t1(), 2.0);
-    scan_piece(&tape, &mut Workspace::default(), &out.piece)
+    scan_piece(&tape, &mut Workspace::default(), &out.piece, true)
 }
 
 /// F = (s − 1)² + c, V = 1.

@@ -45,6 +45,27 @@ fn time(s: &str) -> Result<f64, String> {
     }
 }
 
+/// --fallback-bits: 0, 128, 192 or 256.
+fn fallback_bits(s: &str) -> Result<u32, String> {
+    match s.trim() {
+        "0" => Ok(0),
+        "128" => Ok(128),
+        "192" => Ok(192),
+        "256" => Ok(256),
+        _ => Err("must be one of 0 (off), 128, 192, 256".into()),
+    }
+}
+
+/// --fallback-seconds: (0, 3600].
+fn fallback_seconds(s: &str) -> Result<f64, String> {
+    let t = decimal(s)?;
+    if t > 0.0 && t <= 3600.0 {
+        Ok(t)
+    } else {
+        Err("must be a number in (0, 3600]".into())
+    }
+}
+
 /// --thickness: [1e-14, 1].
 fn thickness(s: &str) -> Result<f64, String> {
     let t = decimal(s)?;
@@ -444,6 +465,19 @@ pub struct CorArgs {
     /// (JSON: a field "sensitivities").
     #[arg(long, requires = "rigorous")]
     pub sensitivities: bool,
+    /// With --rigorous: a case the f64-interval engine cannot decide (grazing or undecidable
+    /// separation, an enclosure grown too wide, a crossing not proved) is run again on MPFR
+    /// intervals at 128, 192, then 256 bits, up to B bits; 0 turns this off. The output names
+    /// the precision that proved each case (a bits column, and in JSON the runs made).
+    /// For --nd and --base [default: 256].
+    #[arg(long, value_name = "B", requires = "rigorous", allow_hyphen_values = true,
+          value_parser = fallback_bits)]
+    pub fallback_bits: Option<u32>,
+    /// Wall-clock budget of each precision of the fallback, 0 < S ≤ 3600 seconds: a run still
+    /// going then stops, and so does the fallback [default: 60].
+    #[arg(long, value_name = "S", requires = "rigorous", allow_hyphen_values = true,
+          value_parser = fallback_seconds)]
+    pub fallback_seconds: Option<f64>,
 }
 
 /// What `prove` proves.

@@ -8,8 +8,10 @@ use super::args::{Cli, Command, CorArgs, TrajectoryArgs};
 use super::input::{self, Case};
 use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
+use bwcl::engines::taylor::RigorError;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::precision::{self, FallbackBudget, outward_f64};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::sets;
 use bwcl::observables::trajectory::{Units, trajectory};
@@ -69,11 +71,21 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     let kind = ModelKind::from(a.params.model);
     let (bytes, failed, total, elapsed) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
+        let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
         let cases = input::cases::<Interval>(&a.params)?;
         let start = std::time::Instant::now();
         let rows: Vec<RigorousRow> = cases
             .par_iter()
-            .map(|c| rigorous_row(kind, c, &opts, input::pieces(&a.engine), a.sensitivities))
+            .map(|c| {
+                rigorous_row(
+                    kind,
+                    c,
+                    &opts,
+                    input::pieces(&a.engine),
+                    a.sensitivities,
+                    &fallback,
+                )
+            })
             .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
@@ -201,6 +213,7 @@ pub(crate) fn rigorous_row(
     opts: &TaylorOptions,
     pieces: usize,
     sensitivities: bool,
+    fallback: &FallbackBudget,
 ) -> RigorousRow {
     // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
     // set, with the solution's dependence on them carried by the engine
@@ -226,6 +239,45 @@ pub(crate) fn rigorous_row(
         params: params_interval(&c.params),
         reason: None,
         sensitivities: None,
+        bits: 53,
+        fallback: None,
+    };
+    // not decided at f64: the precision fallback (point cases given as text)
+    let res = match (res, &c.text) {
+        (Err(err), Some(text)) if !ranged && err.precision_may_help() && fallback.max_bits > 0 => {
+            let d = precision::decide(kind, text, &err, opts, fallback);
+            row.fallback = Some(
+                d.attempts
+                    .iter()
+                    .map(|a| output::FallbackRun {
+                        bits: a.bits,
+                        seconds: a.seconds,
+                        proved: a.error.is_none(),
+                        reason: a.error.as_ref().map(|e| e.to_string()),
+                    })
+                    .collect(),
+            );
+            if let Some(a) = d.attempts.last() {
+                row.bits = a.bits;
+            }
+            match d
+                .enclosure
+                .as_ref()
+                .map(|p| (outward_f64(&p.ts), outward_f64(&p.e)))
+            {
+                Some((Some(ts), Some(e))) => Ok((ts, e)),
+                _ => Err(RigorError {
+                    reason: format!(
+                        "{} at f64; {}",
+                        err.reason,
+                        d.why_not()
+                            .unwrap_or_else(|| "the enclosure is not finite".into())
+                    ),
+                    ..err
+                }),
+            }
+        }
+        (res, _) => res,
     };
     match res {
         Ok((ts, e)) => {

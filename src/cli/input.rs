@@ -13,6 +13,7 @@ use bwcl::models::params::show;
 use bwcl::models::scaling::{PhysicalParams, Scales, nd_from_base, parse_speeds};
 use bwcl::models::{ModelKind, NdParams, ParamError};
 use bwcl::observables::FloatOptions;
+use bwcl::observables::precision::{FallbackBudget, ParamText};
 use bwcl::observables::sets::Inputs;
 use std::path::{Path, PathBuf};
 
@@ -36,6 +37,9 @@ pub struct Case<R> {
     /// The inputs as given (any of them may be a range with --rigorous): what
     /// [`bwcl::observables::sets`] proves over.
     pub inputs: Inputs<R>,
+    /// The parameters as written (--nd, or --base with this case's --v0 token), enclosed anew
+    /// at each precision by the precision fallback; `None` for --physical.
+    pub text: Option<ParamText>,
 }
 
 /// The validated cases of the parameter options, in the order of --v0.
@@ -50,6 +54,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             params,
             scales: None,
             base: None,
+            text: Some(ParamText::Nd(text.clone())),
         }]);
     }
     // clap guarantees one of --base / --physical, and --v0 with them.
@@ -82,6 +87,10 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                     params,
                     scales: None,
                     base: Some(base.clone()),
+                    text: Some(ParamText::Base {
+                        base: text.clone(),
+                        v0: token.trim().to_string(),
+                    }),
                 })
             })
             .collect()
@@ -116,6 +125,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
                     params,
                     scales: Some(scales),
                     base: phys.base(kind).ok(),
+                    text: None,
                 })
             })
             .collect()
@@ -301,6 +311,16 @@ pub fn taylor_options(e: &EngineArgs) -> Result<TaylorOptions, CliError> {
 /// --pieces, or its default.
 pub fn pieces(e: &EngineArgs) -> usize {
     e.pieces.unwrap_or(PIECES)
+}
+
+/// The budget of the precision fallback of `cor --rigorous`: --fallback-bits (0: off) and
+/// --fallback-seconds, else the library's defaults.
+pub fn fallback(bits: Option<u32>, seconds: Option<f64>) -> FallbackBudget {
+    let d = FallbackBudget::default();
+    FallbackBudget {
+        max_bits: bits.unwrap_or(d.max_bits),
+        seconds: seconds.unwrap_or(d.seconds),
+    }
 }
 
 /// Where `path` leads: the file at the end of its chain of symbolic links (the link itself is

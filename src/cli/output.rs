@@ -85,6 +85,23 @@ pub struct RigorousRow {
     /// With --sensitivities: proved ∂T_s/∂u and ∂e/∂u of every input u (JSON only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivities: Option<Vec<Sensitivity>>,
+    /// The precision of the run that proved the case (bits of the interval ends: 53 for the
+    /// f64-interval engine, 128/192/256 for the precision fallback; also when not proved, the
+    /// last precision tried).
+    pub bits: u32,
+    /// The runs of the precision fallback, when it ran (JSON only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fallback: Option<Vec<FallbackRun>>,
+}
+
+/// One run of the precision fallback.
+#[derive(Serialize, Clone, Debug)]
+pub struct FallbackRun {
+    pub bits: u32,
+    pub seconds: f64,
+    pub proved: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
 }
 
 /// Proved ∂T_s/∂u and ∂e/∂u of one input (bounds rounded outward), or why not.
@@ -318,6 +335,8 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
 /// Renders the rigorous rows of `cor`.
 pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, CliError> {
     let physical = rows.iter().any(|r| r.ts_seconds.is_some());
+    // a bits column when the fallback ran (the f64-interval engine's 53 otherwise implied)
+    let bits = rows.iter().any(|r| r.fallback.is_some());
     match format {
         Format::Json => json(rows),
         Format::Csv => {
@@ -327,6 +346,9 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             ];
             if physical {
                 head.extend(["ts_seconds_lo", "ts_seconds_hi"]);
+            }
+            if bits {
+                head.push("bits");
             }
             head.push("reason");
             let pair = |b: Option<[f64; 2]>| match b {
@@ -345,6 +367,9 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                 if physical {
                     c.extend(pair(r.ts_seconds.flatten()));
                 }
+                if bits {
+                    c.push(r.bits.to_string());
+                }
                 c.push(r.reason.clone().unwrap_or_default());
                 c
             });
@@ -354,6 +379,9 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             let mut head = vec!["model", "v0", "ts", "width_ts", "e", "width_e"];
             if physical {
                 head.push("ts_seconds");
+            }
+            if bits {
+                head.push("bits");
             }
             let body: Vec<Vec<String>> = rows
                 .iter()
@@ -386,6 +414,9 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                                         .map(interval_text)
                                         .unwrap_or_default(),
                                 );
+                            }
+                            if bits {
+                                c.push(r.bits.to_string());
                             }
                         }
                         _ => {

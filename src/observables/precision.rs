@@ -190,6 +190,179 @@ pub fn rigorous_impact_digits(
     rigorous_impact_bits(kind, p, bits, &options_for_digits(digits, base))
 }
 
+/// One rung of the precision fallback: the precision and the digits whose tunables
+/// ([`options_for_digits`]) it runs with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rung {
+    pub bits: u32,
+    pub digits: u32,
+}
+
+/// The rungs tried after the f64-interval engine (53-bit ends) could not decide a case, in
+/// order: f64 runs at tol 10⁻¹⁵ (results ≈ 10⁻¹³ wide); 128 bits with the tunables of 16
+/// digits (tol 10⁻¹⁹), 192 bits with 24 (10⁻²⁷), 256 bits with 26 (10⁻²⁹).
+///
+/// Why 26 and not more (measured on SHC (1.43, −1.42, 0.632, 0.00715, 1.31, 1.27) at 256
+/// bits, `examples/rung.rs`): D = 24 proves in 1.9 s (e 4.8·10⁻²⁶ wide), D = 26 in 4.5 s
+/// (7.5·10⁻²⁸); D = 28 fails at T ≈ 1.6 ("cannot cross a switching surface": a low-order
+/// step across Z = 0 adds ≈ h^(1+a) with h at least an ulp of T), and D = 30 does not leave the
+/// start X = Z = 0 in 30 s — the branch points without singular expansions (issue #15).
+pub const LADDER: [Rung; 3] = [
+    Rung {
+        bits: 128,
+        digits: 16,
+    },
+    Rung {
+        bits: 192,
+        digits: 24,
+    },
+    Rung {
+        bits: 256,
+        digits: 26,
+    },
+];
+
+/// The longest stretch of time on which the fallback lets the separation condition stay
+/// undecided before it is proved (f64: [`TaylorOptions::event_slack`], 10⁻³): the T_s
+/// enclosure is then that wide. Near a Hunt–Crossley separation F = |X|^p(1 − σV) vanishes
+/// like |X|^p·(1 − σV) as X → 0 and is below any width for a while (σ = 50 at 192 bits:
+/// 1.02·10⁻³).
+pub const FALLBACK_EVENT_SLACK: f64 = 1e-2;
+
+/// The budget of the precision fallback.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FallbackBudget {
+    /// The highest precision tried (bits; below 128 the fallback is off).
+    pub max_bits: u32,
+    /// Wall-clock seconds per rung: a run still going then stops ([`TaylorOptions::deadline`])
+    /// and the fallback ends there (a higher precision is slower still).
+    pub seconds: f64,
+}
+
+impl Default for FallbackBudget {
+    /// All three rungs, 60 s each (measured: the Hunt–Crossley σ = 30 case decides at 128 bits
+    /// in ≈ 7 s, see [`decide`]).
+    fn default() -> Self {
+        Self {
+            max_bits: 256,
+            seconds: 60.0,
+        }
+    }
+}
+
+impl FallbackBudget {
+    /// No fallback.
+    pub fn off() -> Self {
+        Self {
+            max_bits: 0,
+            seconds: 0.0,
+        }
+    }
+}
+
+/// One run of the engine at a precision, and how it ended.
+#[derive(Clone, Debug)]
+pub struct Attempt {
+    pub bits: u32,
+    pub seconds: f64,
+    /// `None`: proved.
+    pub error: Option<RigorError>,
+}
+
+/// What the precision fallback found: the enclosure of the first rung that proved the case,
+/// and every run it made.
+#[derive(Clone, Debug)]
+pub struct Decision {
+    pub enclosure: Option<PreciseEnclosure>,
+    pub attempts: Vec<Attempt>,
+}
+
+impl Decision {
+    /// Why no rung proved the case (the last run's reason), if none did.
+    pub fn why_not(&self) -> Option<String> {
+        if self.enclosure.is_some() {
+            return None;
+        }
+        Some(match self.attempts.last() {
+            None => "no higher precision was tried".into(),
+            Some(a) => format!(
+                "at {} bits: {}",
+                a.bits,
+                a.error.as_ref().map_or("?".into(), |e| e.to_string())
+            ),
+        })
+    }
+}
+
+/// The precision fallback: after the f64-interval engine failed with `first`, the case is
+/// run again on [`LADDER`]'s rungs up to `budget.max_bits`, each within `budget.seconds`,
+/// until one proves it, one fails for a reason a higher precision cannot remove
+/// ([`RigorError::precision_may_help`], e.g. the time budget), or the rungs run out. Nothing
+/// is tried when `first` is not such a failure either.
+///
+/// Why it decides cases: the separation condition F ≤ 0 ∧ V ≥ 0 is decided only where F's
+/// enclosure excludes 0. Near a Hunt–Crossley separation F = |X|^p(1 − σV) with 1 − σV
+/// decaying like exp(−σ∫|X|^p): at σ = 30 it is ≈ 10⁻¹² near T = 8.8, below what the f64
+/// enclosure (≈ 10⁻¹³ wide) resolves, and 128 bits decide it (measured: 7 s).
+pub fn decide(
+    kind: ModelKind,
+    p: &ParamText,
+    first: &RigorError,
+    base: &TaylorOptions,
+    budget: &FallbackBudget,
+) -> Decision {
+    let mut out = Decision {
+        enclosure: None,
+        attempts: Vec::new(),
+    };
+    if !first.precision_may_help() {
+        return out;
+    }
+    for rung in LADDER.iter().filter(|r| r.bits <= budget.max_bits) {
+        let start = std::time::Instant::now();
+        let opts = TaylorOptions {
+            deadline: Some(start + std::time::Duration::from_secs_f64(budget.seconds.max(0.0))),
+            event_slack: base.event_slack.max(FALLBACK_EVENT_SLACK),
+            ..options_for_digits(rung.digits, base)
+        };
+        let r = rigorous_impact_bits(kind, p, rung.bits, &opts);
+        let seconds = start.elapsed().as_secs_f64();
+        match r {
+            Ok(enc) => {
+                out.attempts.push(Attempt {
+                    bits: rung.bits,
+                    seconds,
+                    error: None,
+                });
+                out.enclosure = Some(enc);
+                break;
+            }
+            Err(e) => {
+                let go_on = e.precision_may_help();
+                out.attempts.push(Attempt {
+                    bits: rung.bits,
+                    seconds,
+                    error: Some(e),
+                });
+                if !go_on {
+                    break;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The ends of an exact enclosure rounded outward to doubles (lo down, hi up): an inari
+/// interval containing it.
+pub fn outward_f64(ends: &[Rational; 2]) -> Option<inari::Interval> {
+    use rug::float::Round;
+    // (rounded twice in the same direction: to 53 bits, then into the double's range)
+    let lo = Float::with_val_round(53, &ends[0], Round::Down).0;
+    let hi = Float::with_val_round(53, &ends[1], Round::Up).0;
+    inari::Interval::try_from((lo.to_f64_round(Round::Down), hi.to_f64_round(Round::Up))).ok()
+}
+
 /// How many significant digits of [lo, hi] to print: every digit the width allows, i.e. up to
 /// the first decade of the width (two more than where lo and hi part), at most what `bits`
 /// hold.

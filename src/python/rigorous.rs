@@ -42,8 +42,9 @@ pub fn cor_rigorous<'py>(
     let kind = ModelKind::from(a.params.model);
     let opts = input::taylor_options(&a.engine).map_err(py_error)?;
     let pieces = input::pieces(&a.engine);
+    let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
     let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
-        rigorous_row(kind, c, &opts, pieces, false)
+        rigorous_row(kind, c, &opts, pieces, false, &fallback)
     })?;
     let d = PyDict::new(py);
     d.set_item("model", kind.name())?;

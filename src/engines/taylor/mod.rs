@@ -75,6 +75,15 @@ pub struct TaylorOptions {
     /// crossing variable ([`singular`]) instead of geometrically shrinking Taylor steps and a
     /// low-order step; off: the latter only. Taken by the f64-interval engine (inari).
     pub singular: bool,
+    /// Stop with [`DEADLINE`] when a step starts after this instant (`None`: no limit): the
+    /// time budget of a run, e.g. of each precision of the fallback
+    /// ([`crate::observables::precision::decide`]).
+    pub deadline: Option<std::time::Instant>,
+    /// Where the box evaluation of F and V on a time interval of a piece does not decide the
+    /// separation condition, also evaluate them as polynomials in time along a Taylor piece,
+    /// then in a centred form of second order ([`event`]); off: the box and bisection alone
+    /// (measured: the Hunt–Crossley limit σ = 12 is then undecidable at f64).
+    pub event_forms: bool,
 }
 
 impl Default for TaylorOptions {
@@ -93,6 +102,8 @@ impl Default for TaylorOptions {
             event_slack: 1e-3,
             qr: true,
             singular: true,
+            deadline: None,
+            event_forms: true,
         }
     }
 }
@@ -104,6 +115,26 @@ pub struct RigorError {
     /// The time reached (nondimensional) with the widest state enclosure there.
     pub t: f64,
     pub width: f64,
+}
+
+/// The reasons of [`RigorError`] that a narrower enclosure may remove (see
+/// [`RigorError::precision_may_help`]).
+pub const GREW_TOO_WIDE: &str = "the enclosure grew too wide";
+pub const CANNOT_CROSS: &str = "cannot cross a switching surface with a proved low-order step";
+pub const UNDECIDABLE: &str = "grazing or undecidable separation";
+/// The reason of a run stopped at [`TaylorOptions::deadline`].
+pub const DEADLINE: &str = "the time budget ran out";
+
+impl RigorError {
+    /// Whether the same case may be proved with narrower enclosures (at a higher precision):
+    /// the enclosure grew too wide, a crossing's low-order step added too much width, or the
+    /// separation condition was neither excluded nor proved at this width. Not for a horizon
+    /// reached with the condition proved to fail, the step budget, bad options or parameters.
+    pub fn precision_may_help(&self) -> bool {
+        [GREW_TOO_WIDE, CANNOT_CROSS, UNDECIDABLE]
+            .iter()
+            .any(|r| self.reason.starts_with(r))
+    }
 }
 
 impl fmt::Display for RigorError {
@@ -233,7 +264,17 @@ fn integrate_tape<I: Enclosure, const N: usize>(
         let w = width(&x);
         if !step::bounded(&x) || w > opts.max_width {
             return Err(RigorError {
-                reason: "the enclosure grew too wide".into(),
+                reason: GREW_TOO_WIDE.into(),
+                t,
+                width: w,
+            });
+        }
+        if opts
+            .deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+        {
+            return Err(RigorError {
+                reason: DEADLINE.into(),
                 t,
                 width: w,
             });
@@ -298,7 +339,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                     // δ^M: too far from the surface the step is refused, and tried again nearer)
                     let ok = width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15)
                         && matches!(
-                            event::scan_piece(tape, &mut ev_ws, &o.piece),
+                            event::scan_piece(tape, &mut ev_ws, &o.piece, opts.event_forms),
                             event::Verdict::Cleared
                         );
                     s.taken(ok, h);
@@ -384,8 +425,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                     // (a step shorter than the spacing of doubles at t would not advance)
                     if h < opts.min_low_order_step || t + h <= t {
                         return Err(RigorError {
-                            reason: "cannot cross a switching surface with a proved low-order step"
-                                .into(),
+                            reason: CANNOT_CROSS.into(),
                             t,
                             width: w,
                         });
@@ -417,7 +457,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             }
         };
         let t1 = out.piece.t1();
-        let verdict = event::scan_piece(tape, &mut ev_ws, &out.piece);
+        let verdict = event::scan_piece(tape, &mut ev_ws, &out.piece, opts.event_forms);
         flow.pieces.push(out.piece);
         match (verdict, pending) {
             (event::Verdict::Found(ev), None) => return Ok((flow, ev)),
@@ -439,7 +479,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             if t1 - p > opts.event_slack.max(100.0 * w) {
                 return Err(RigorError {
                     reason: format!(
-                        "grazing or undecidable separation: the condition could neither be excluded nor proved on [{p}, {t1}]"
+                        "{UNDECIDABLE}: the condition could neither be excluded nor proved on [{p}, {t1}]"
                     ),
                     t,
                     width: w,

@@ -1,0 +1,230 @@
+//! Deciding what double precision cannot (issue #15, 4): the event scan's polynomial and
+//! centred forms, and the precision fallback, on the Hunt–Crossley limit of the NDBWSHCCM,
+//! whose CoR has a closed form.
+//!
+//! **The reference.** With B → 0 and Γ = 0, Ż = V, so Z = X and (κ + κ_c = 1)
+//! F = |X|^p(−sgn X − σV), and dV/dT = F, dX/dT = V give V dV/dX = F, i.e. for X < 0
+//! (compression) V dV/(1 − σV) = |X|^p dX. Over the contact X goes from 0 and back to 0, so
+//! ∫_{−1}^{e} V/(1 − σV) dV = 0, i.e. with u = σe
+//!
+//! ```text
+//! −u − ln(1 − u) = σ − ln(1 + σ)
+//! ```
+//!
+//! (the Hunt–Crossley restitution law; p does not enter). g(u) = −u − ln(1 − u) − c is
+//! increasing on (0, 1); its root is bracketed at 400 bits by the signs of g at u* ∓ 10⁻⁹⁰
+//! (|g| there ≈ g′·10⁻⁹⁰ ≫ the rounding ≈ 10⁻¹¹⁵), and every enclosure must contain the whole
+//! bracket (compared as exact rationals). The case uses B = 10⁻³⁰⁰ (𝓟 is open): its e differs
+//! from the limit's by ≈ 10⁻³⁰⁰, far inside the bracket's 10⁻⁹⁰.
+
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::{ModelKind, NdParams, Shc};
+use bwcl::observables::precision::{FallbackBudget, ParamText, decide};
+use bwcl::observables::rigorous::rigorous_impact;
+use inari::Interval;
+use rug::{Float, Rational};
+use std::process::Command;
+
+const BITS: u32 = 400;
+
+/// The bracket [lo, hi] of the Hunt–Crossley e(σ), exact rationals.
+fn hc_bracket(sigma: u32) -> (Rational, Rational) {
+    let f = |x: f64| Float::with_val(BITS, x);
+    let s = f(sigma as f64);
+    let c = s.clone() - (s.clone() + 1u32).ln();
+    let g = |u: &Float| -u.clone() - (Float::with_val(BITS, 1u32) - u).ln() - &c;
+    let mut u = f(0.5);
+    for _ in 0..400 {
+        let dg = Float::with_val(BITS, 1u32) / (Float::with_val(BITS, 1u32) - &u) - 1u32;
+        let mut next = u.clone() - g(&u) / dg;
+        if next >= 1u32 {
+            next = (u.clone() + 1u32) / 2u32;
+        }
+        u = next;
+    }
+    let eps = Float::with_val(BITS, Float::parse("1e-90").unwrap());
+    let (a, b) = (u.clone() - &eps, u.clone() + &eps);
+    assert!(g(&a) < 0u32 && g(&b) > 0u32, "the root is bracketed");
+    let r = |x: Float| x.to_rational().unwrap() / Rational::from(sigma);
+    (r(a), r(b))
+}
+
+fn rat(x: f64) -> Rational {
+    Rational::from_f64(x).unwrap()
+}
+
+fn nd(sigma: u32) -> String {
+    format!("1e-300,0,0.5,{sigma},1.5,1.5")
+}
+
+fn f64_run(
+    sigma: u32,
+    forms: bool,
+) -> Result<(Interval, Interval), bwcl::engines::taylor::RigorError> {
+    let p = NdParams::<Interval>::parse(ModelKind::Shc, &nd(sigma)).unwrap();
+    let opts = TaylorOptions {
+        event_forms: forms,
+        ..TaylorOptions::default()
+    };
+    rigorous_impact(&Shc::new(p), &opts).map(|r| (r.ts, r.e))
+}
+
+#[test]
+fn the_reference_is_the_hunt_crossley_law() {
+    // against an independent evaluation: σ = 12 by the f64 solver, 0.0833308845711…
+    let (lo, hi) = hc_bracket(12);
+    assert!(lo > rat(0.0833308845711) && hi < rat(0.0833308845712));
+}
+
+#[test]
+fn f64_decides_sigma_12_15_20_with_the_forms_and_not_without() {
+    for sigma in [12, 15, 20] {
+        let (lo, hi) = hc_bracket(sigma);
+        let (_, e) = f64_run(sigma, true).unwrap_or_else(|e| panic!("σ = {sigma}: {e}"));
+        assert!(
+            rat(e.inf()) <= lo && hi <= rat(e.sup()),
+            "σ = {sigma}: e {e:?} does not contain the Hunt–Crossley value"
+        );
+        assert!(e.wid() < 1e-12, "σ = {sigma}: e {e:?}");
+        // the negative control: the box evaluation alone cannot decide the separation
+        let err = f64_run(sigma, false).expect_err("undecidable with the box scan alone");
+        assert!(err.precision_may_help(), "{err}");
+    }
+}
+
+#[test]
+fn the_fallback_decides_sigma_30_at_128_bits_and_50_at_192() {
+    let budget = FallbackBudget {
+        max_bits: 256,
+        seconds: 300.0,
+    };
+    for (sigma, bits, tried) in [(30, 128, 1), (50, 192, 2)] {
+        let err = f64_run(sigma, true).expect_err("f64 cannot decide");
+        assert!(err.precision_may_help(), "{err}");
+        let d = decide(
+            ModelKind::Shc,
+            &ParamText::Nd(nd(sigma)),
+            &err,
+            &TaylorOptions::default(),
+            &budget,
+        );
+        let enc = d
+            .enclosure
+            .as_ref()
+            .unwrap_or_else(|| panic!("σ = {sigma}: {:?}", d.why_not()));
+        assert_eq!((enc.bits, d.attempts.len()), (bits, tried), "σ = {sigma}");
+        let (lo, hi) = hc_bracket(sigma);
+        assert!(
+            enc.e[0] <= lo && hi <= enc.e[1],
+            "σ = {sigma}: e [{}, {}] does not contain the Hunt–Crossley value",
+            enc.e[0].to_f64(),
+            enc.e[1].to_f64()
+        );
+        assert!(enc.width_e() < (1, 10u64.pow(16)), "σ = {sigma}");
+    }
+}
+
+#[test]
+fn the_fallback_does_not_run_where_precision_cannot_help() {
+    // no separation before a short horizon: proved, not a question of width
+    let p = NdParams::<Interval>::parse(ModelKind::Shc, &nd(12)).unwrap();
+    let opts = TaylorOptions {
+        horizon: 1.0,
+        ..TaylorOptions::default()
+    };
+    let err = rigorous_impact(&Shc::new(p), &opts).expect_err("no separation before T = 1");
+    assert!(!err.precision_may_help(), "{err}");
+    let d = decide(
+        ModelKind::Shc,
+        &ParamText::Nd(nd(12)),
+        &err,
+        &opts,
+        &FallbackBudget::default(),
+    );
+    assert!(d.enclosure.is_none() && d.attempts.is_empty());
+}
+
+fn bwcl(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_bwcl"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn the_cli_names_the_precision_that_decided() {
+    let p = nd(30);
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        &p,
+        "--rigorous",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let row = &v[0];
+    assert_eq!(row["proved"], true);
+    assert_eq!(row["bits"], 128);
+    assert_eq!(row["fallback"][0]["bits"], 128);
+    assert_eq!(row["fallback"][0]["proved"], true);
+    // the printed bounds (outward to doubles) contain the Hunt–Crossley value
+    let (lo, hi) = hc_bracket(30);
+    let e = (row["e"][0].as_f64().unwrap(), row["e"][1].as_f64().unwrap());
+    assert!(rat(e.0) <= lo && hi <= rat(e.1), "{e:?}");
+    // CSV and table name it in a bits column
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        &p,
+        "--rigorous",
+        "--format",
+        "csv",
+    ]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let j = head
+        .iter()
+        .position(|h| *h == "bits")
+        .expect("a bits column");
+    assert_eq!(row[j], "128");
+    // off: not proved (exit 1), the f64 reason
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        &p,
+        "--rigorous",
+        "--fallback-bits",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("grazing or undecidable"));
+    // options out of range: one line, exit 2
+    for bad in [
+        ["--fallback-bits", "100"],
+        ["--fallback-seconds", "0"],
+        ["--fallback-seconds", "nan"],
+    ] {
+        let mut args = vec!["cor", "--model", "shc", "--nd", &p, "--rigorous"];
+        args.extend(bad);
+        let o = bwcl(&args);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(bad[1]), "{err}");
+    }
+}
