@@ -21,7 +21,8 @@ struct Row {
 }
 
 /// The cases of --nd or --base/--v0 as texts (validated by the usual parser first, so bad input
-/// gets its usual message); ranges and --physical are refused.
+/// gets its usual message; the texts are the cases' own, [`input::Case::text`]); ranges and
+/// --physical are refused.
 fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
     let checked = input::cases::<Interval>(&a.params)?;
     if checked
@@ -32,27 +33,21 @@ fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
             "--digits proves single values: inputs given as ranges (a..b) are not supported with it".into(),
         ));
     }
-    if let Some(t) = &a.params.nd {
-        return Ok(vec![("-".into(), ParamText::Nd(t.clone()))]);
-    }
-    match (&a.params.base, &a.params.v0) {
-        (Some(b), Some(v)) => Ok(v
-            .split(',')
-            .map(|tok| {
-                let tok = tok.trim().to_string();
-                (
-                    tok.clone(),
-                    ParamText::Base {
-                        base: b.clone(),
-                        v0: tok,
-                    },
+    checked
+        .into_iter()
+        .map(|c| {
+            let t = c.text.ok_or_else(|| {
+                CliError::Input(
+                    "--digits supports --nd and --base with --v0 (not --physical)".into(),
                 )
-            })
-            .collect()),
-        _ => Err(CliError::Input(
-            "--digits supports --nd and --base with --v0 (not --physical)".into(),
-        )),
-    }
+            })?;
+            let v0 = match &t {
+                ParamText::Base { v0, .. } => v0.clone(),
+                ParamText::Nd(_) => "-".into(),
+            };
+            Ok((v0, t))
+        })
+        .collect()
 }
 
 /// Runs `cor --rigorous --digits D`; `Ok` carries the exit code.

@@ -326,28 +326,18 @@ pub fn decide(
             ..options_for_digits(rung.digits, base)
         };
         let r = rigorous_impact_bits(kind, p, rung.bits, &opts);
-        let seconds = start.elapsed().as_secs_f64();
+        out.attempts.push(Attempt {
+            bits: rung.bits,
+            seconds: start.elapsed().as_secs_f64(),
+            error: r.as_ref().err().cloned(),
+        });
         match r {
             Ok(enc) => {
-                out.attempts.push(Attempt {
-                    bits: rung.bits,
-                    seconds,
-                    error: None,
-                });
                 out.enclosure = Some(enc);
                 break;
             }
-            Err(e) => {
-                let go_on = e.precision_may_help();
-                out.attempts.push(Attempt {
-                    bits: rung.bits,
-                    seconds,
-                    error: Some(e),
-                });
-                if !go_on {
-                    break;
-                }
-            }
+            Err(e) if !e.precision_may_help() => break,
+            Err(_) => {}
         }
     }
     out
@@ -409,6 +399,36 @@ mod tests {
         assert_eq!(bits_for_digits(60), Some(256));
         assert_eq!(bits_for_digits(100), Some(384));
         assert_eq!(bits_for_digits(101), None);
+    }
+
+    #[test]
+    fn doubles_of_an_exact_enclosure_are_rounded_outward() {
+        // 1/3 ± 10⁻³⁰: both ends round to the same nearest double, on one side of 1/3
+        let third = Rational::from((1, 3));
+        let tiny = Rational::from((1, 10u128.pow(30)));
+        let ends = [
+            Rational::from(&third - &tiny),
+            Rational::from(&third + &tiny),
+        ];
+        let x = outward_f64(&ends).unwrap();
+        let (lo, hi) = (
+            Rational::from_f64(x.inf()).unwrap(),
+            Rational::from_f64(x.sup()).unwrap(),
+        );
+        assert!(lo <= ends[0] && ends[1] <= hi, "{x:?}");
+        // and no wider than the next doubles out
+        assert!(
+            x.inf() < x.sup() && x.sup() - x.inf() < 2.0 * f64::EPSILON,
+            "{x:?}"
+        );
+        // negative ends too
+        let neg = [Rational::from(-&ends[1]), Rational::from(-&ends[0])];
+        let y = outward_f64(&neg).unwrap();
+        assert!(
+            Rational::from_f64(y.inf()).unwrap() <= neg[0]
+                && neg[1] <= Rational::from_f64(y.sup()).unwrap(),
+            "{y:?}"
+        );
     }
 
     #[test]

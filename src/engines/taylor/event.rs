@@ -114,7 +114,22 @@ fn poly_eval<I: Enclosure>(c: &[I], s: &I) -> I {
     centred + c[k].clone() * s.powi_nonneg(k as u32)
 }
 
-impl<const N: usize, I: Enclosure> Ctx<'_, N, I> {
+impl<'a, const N: usize, I: Enclosure> Ctx<'a, N, I> {
+    fn new(
+        tape: &'a Tape<I, N>,
+        ws: &'a mut Workspace<I>,
+        piece: &'a Piece<N, I>,
+        forms: bool,
+    ) -> Self {
+        Self {
+            tape,
+            ws,
+            piece,
+            poly: None,
+            forms,
+        }
+    }
+
     /// (F, V) over the flow's enclosure at the times `t`.
     fn fv(&self, t: &I) -> ([I; N], I, I) {
         let s = self.piece.enclose(t);
@@ -140,9 +155,8 @@ impl<const N: usize, I: Enclosure> Ctx<'_, N, I> {
     /// difference of terms ≈ 0.03, and on a time interval of length δ each term moves by
     /// ≈ 0.1·δ, so the box proves F > 0 only for δ ≲ 10⁻⁶; here the width is of order δ³ plus
     /// the flow set's own.
-    fn fv_centred(&mut self, t: &I) -> Option<(I, I)> {
-        let b = self.piece.enclose(t);
-        self.tape.jet(&b, 2, self.ws).ok()?;
+    fn fv_centred(&mut self, t: &I, b: &[I; N]) -> Option<(I, I)> {
+        self.tape.jet(b, 2, self.ws).ok()?;
         let (f2, v2) = (
             self.tape.output_coef(self.ws, 2, N, 2),
             self.tape.output_coef(self.ws, 2, N + 1, 2),
@@ -201,7 +215,7 @@ impl<const N: usize, I: Enclosure> Ctx<'_, N, I> {
     }
 
     fn scan(&mut self, t: I, depth: u32) -> Verdict<N, I> {
-        let (_, mut f, mut v) = self.fv(&t);
+        let (b, mut f, mut v) = self.fv(&t);
         if f.lo() > 0.0 || v.hi() < 0.0 {
             return Verdict::Cleared;
         }
@@ -210,7 +224,7 @@ impl<const N: usize, I: Enclosure> Ctx<'_, N, I> {
         for form in [Form::Poly, Form::Centred] {
             let tighter = match form {
                 Form::Poly if self.forms => self.fv_poly(&t),
-                Form::Centred if self.forms => self.fv_centred(&t),
+                Form::Centred if self.forms => self.fv_centred(&t, &b),
                 _ => None,
             };
             if let Some((fc, vc)) = tighter {
@@ -274,13 +288,7 @@ pub fn scan_piece<const N: usize, I: Enclosure>(
     forms: bool,
 ) -> Verdict<N, I> {
     let t = I::from_bounds(piece.t0(), piece.t1()).expect("a piece's times");
-    let mut ctx = Ctx {
-        tape,
-        ws,
-        piece,
-        poly: None,
-        forms,
-    };
+    let mut ctx = Ctx::new(tape, ws, piece, forms);
     ctx.scan(t, 0)
 }
 
@@ -386,13 +394,7 @@ mod tests {
     fn polynomial_form_encloses_the_outputs() {
         let (tape, piece) = oscillator();
         let mut ws = Workspace::default();
-        let mut ctx = Ctx {
-            tape: &tape,
-            ws: &mut ws,
-            piece: &piece,
-            poly: None,
-            forms: true,
-        };
+        let mut ctx = Ctx::new(&tape, &mut ws, &piece, true);
         for t in intervals() {
             let fv = ctx
                 .fv_poly(&t)
@@ -405,15 +407,10 @@ mod tests {
     fn centred_form_encloses_the_outputs() {
         let (tape, piece) = oscillator();
         let mut ws = Workspace::default();
-        let mut ctx = Ctx {
-            tape: &tape,
-            ws: &mut ws,
-            piece: &piece,
-            poly: None,
-            forms: true,
-        };
+        let mut ctx = Ctx::new(&tape, &mut ws, &piece, true);
         for t in intervals() {
-            let fv = ctx.fv_centred(&t).expect("the jet exists on the box");
+            let b = piece.enclose(&t);
+            let fv = ctx.fv_centred(&t, &b).expect("the jet exists on the box");
             assert_contains(t, fv, "centred form");
         }
     }
@@ -428,13 +425,7 @@ mod tests {
             slope: [Interval::try_from((-1.0, 1.0)).unwrap(); 2],
         };
         let mut ws = Workspace::default();
-        let mut ctx = Ctx {
-            tape: &tape,
-            ws: &mut ws,
-            piece: &piece,
-            poly: None,
-            forms: true,
-        };
+        let mut ctx = Ctx::new(&tape, &mut ws, &piece, true);
         assert!(ctx.fv_poly(&point(0.05)).is_none());
     }
 }
