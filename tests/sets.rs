@@ -6,7 +6,9 @@ use bwcl::arith::Real;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::params::TABLE1;
 use bwcl::models::{ModelKind, NdParams};
-use bwcl::observables::band::{BandOptions, prove_band, prove_decreasing};
+use bwcl::observables::band::{
+    BandOptions, prove_band, prove_decreasing, prove_piece, sub_centres,
+};
 use bwcl::observables::sets::{Inputs, prove_over_set};
 use inari::Interval;
 
@@ -212,6 +214,53 @@ fn band_contains_its_points_and_a_shifted_band_is_rejected() {
     assert_eq!(shifted_caught, 21, "a shifted band passed the check");
 }
 
+/// A piece's slope holds on its parts: the parts with their own centres (sub-centres) keep the
+/// piece's slope and hull, are thinner, and each contains the point enclosures at its ends and
+/// inside (compared exactly); with the piece's centre value in place of a part's own, the same
+/// check fails.
+#[test]
+fn sub_centres_contain_their_points() {
+    let opts = TaylorOptions::default();
+    let kind = ModelKind::Shc;
+    let p = NdParams::parse(kind, DSS_SHC).unwrap();
+    let piece = prove_piece(kind, &p, 1.0, 1.004, &opts).unwrap();
+    let parts = sub_centres(kind, &p, &piece, 4, &opts).unwrap();
+    assert_eq!(parts.len(), 4);
+    assert_eq!((parts[0].v0_lo, parts[3].v0_hi), (1.0, 1.004));
+    for w in parts.windows(2) {
+        assert_eq!(w[0].v0_hi, w[1].v0_lo, "gap between parts");
+    }
+    let mut wrong_caught = 0;
+    for q in &parts {
+        assert!(q.v0_lo < q.v0_c && q.v0_c < q.v0_hi);
+        assert_eq!((q.de, q.dts), (piece.de, piece.dts));
+        assert!(q.e.subset(piece.e) && q.ts.subset(piece.ts));
+        assert!(
+            q.thickness() < 0.35 * piece.thickness(),
+            "{:e} against {:e}",
+            q.thickness(),
+            piece.thickness()
+        );
+        for k in 0..=4 {
+            let v = q.v0_lo + (q.v0_hi - q.v0_lo) * k as f64 / 4.0;
+            let v = if k == 4 { q.v0_hi } else { v };
+            let pt = prove_over_set(kind, &base(kind, DSS_SHC, iv(v, v)), &opts).unwrap();
+            let (e, ts) = (q.e_at(iv(v, v)).unwrap(), q.ts_at(iv(v, v)).unwrap());
+            assert!(
+                pt.e.subset(e) && pt.ts.subset(ts),
+                "v0 = {v}: {pt:?} not in {e:?} {ts:?}"
+            );
+            let mut wrong = q.clone();
+            (wrong.e_c, wrong.ts_c) = (piece.e_c, piece.ts_c);
+            let e = wrong.e_at(iv(v, v)).unwrap();
+            if !pt.e.subset(e) {
+                wrong_caught += 1;
+            }
+        }
+    }
+    assert!(wrong_caught >= 10, "{wrong_caught} of 20 caught");
+}
+
 /// The monotonicity prover: proves the SHC DSS curve decreasing on [0.9, 1.1], and fails —
 /// naming the range — on a curve that increases (a stiff-exponent SHC set, p = 3, whose e
 /// grows with v0; f64: e(0.1) = 0.877, e(0.3) = 0.880, e(1) = 0.928).
@@ -233,7 +282,7 @@ fn monotonicity_is_proved_and_refused() {
     let covered: f64 = m.undecided.iter().map(|(a, b, _)| b - a).sum();
     assert!(covered > 0.5, "{:?}", m.undecided);
     // and the slopes it found are positive there (the refusal is for the right reason)
-    let s = bwcl::observables::band::prove_piece(ModelKind::Shc, &up, 0.5, 0.51, &opts).unwrap();
+    let s = prove_piece(ModelKind::Shc, &up, 0.5, 0.51, &opts).unwrap();
     assert!(s.de.inf() > 0.0, "{:?}", s.de);
 }
 
@@ -245,7 +294,7 @@ fn slopes_contain_difference_quotients() {
     for (_, kind, text) in TABLE1 {
         let p = NdParams::parse(kind, text).unwrap();
         let (a, b) = (1.5, 1.5078125);
-        let piece = bwcl::observables::band::prove_piece(kind, &p, a, b, &opts).unwrap();
+        let piece = prove_piece(kind, &p, a, b, &opts).unwrap();
         let at = |v: f64| prove_over_set(kind, &base(kind, text, iv(v, v)), &opts).unwrap();
         let (ea, eb) = (at(a), at(b));
         let q = (eb.e - ea.e) / (iv(b, b) - iv(a, a));

@@ -412,7 +412,8 @@ pub struct EngineArgs {
     #[arg(long)]
     pub rigorous: bool,
 
-    /// Taylor order of the rigorous engine, 2 ≤ K ≤ 40 [default: 16]. Needs --rigorous.
+    /// Taylor order of the rigorous engine, 2 ≤ K ≤ 40 [default: 16; 12 with --band]. Needs
+    /// --rigorous.
     #[arg(long, value_name = "K", allow_hyphen_values = true,
           value_parser = count(ORDER))]
     pub order: Option<usize>,

@@ -135,6 +135,8 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     let (base, lo, hi) = band_case(kind, &cases)?;
     let bo = BandOptions {
         thickness: a.thickness.unwrap_or(1e-6),
+        // --order when given, else the band's own default
+        order: a.engine.order.unwrap_or(BandOptions::default().order),
         ..BandOptions::default()
     };
     let start = std::time::Instant::now();

@@ -16,16 +16,24 @@
 //! thickness, wid e(v_c) + wid[de/dv0]·max(v_hi − v_c, v_c − v_lo), is below the target (v_c
 //! is a point with a short exact decimal in the middle half of the piece, printed exactly).
 //!
+//! **Sub-centres.** The slope enclosure of a piece holds on every part of it, so a piece too
+//! thick by a factor r ≤ [`MAX_SUB_CENTRES`] is cut into m ≈ r equal parts that keep its slope and
+//! hull and get each its own centre (one point run each, ≈ 1/6 of a range run): the thickness
+//! falls like 1/m. A piece thicker than that is cut into parts that are proved again, aimed at a
+//! thickness of about [`AIM`] × the target (finished with sub-centres), since the thickness of a
+//! proved piece grows like its width to the power ≈ 2.4 (measured, below).
+//!
 //! **Monotonicity**: sup [de/dv0] < 0 on a piece proves e strictly decreasing there (e is C¹ in
 //! v0: the field is Lipschitz and piecewise C¹ with transversal crossings, so the variational
 //! equation holds almost everywhere); pieces where the slope's sign is not decided are split
 //! down to a minimum width and then named.
 
-use super::sets::{Inputs, SetEnclosure, prove_over_set};
+use super::sets::{Inputs, SetEnclosure, prove_over_set, short_centre};
 use crate::engines::taylor::{RigorError, TaylorOptions};
 use crate::models::{ModelKind, NdParams};
 use inari::Interval;
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// One proved piece of the band.
 #[derive(Clone, Debug)]
@@ -102,6 +110,24 @@ impl Band {
     }
 }
 
+/// Most sub-centres given to one proved piece (see the module's documentation): measured on
+/// the four Table 1 sets, a range run costs about 6 point runs, so m point runs beat a second
+/// round of range runs up to m ≈ 16.
+pub const MAX_SUB_CENTRES: usize = 16;
+
+/// The thickness (× the target) a piece cut for a new round of range runs is aimed at; its
+/// sub-centres then take it below the target. The cost per length of the final pieces,
+/// (range + m·point)/w with w ∝ m^(1/2.4), is least near m = 4 for a range run of 6 point
+/// runs; measured on [0.1, 5] at 1e-6 (SHC DSS, Maxwell DSA): aim 2.5 took 57.7 s and 56.8 s,
+/// aim 4 61.7 s and 59.9 s, aim 6 64.5 s and 62.4 s (the cut tends to over-cut, see
+/// [`THICKNESS_POWER`]).
+pub const AIM: f64 = 2.5;
+
+/// The thickness of a proved piece grows like its width to this power (measured on the four
+/// Table 1 sets at v0 = 0.1, 1, 4.5: widths 0.01 and 0.0025 give thickness ratios 20–30, i.e.
+/// 2.2–2.5), used to predict the cut.
+const THICKNESS_POWER: f64 = 2.4;
+
 /// Options of the adaptive cut.
 #[derive(Clone, Debug)]
 pub struct BandOptions {
@@ -109,10 +135,17 @@ pub struct BandOptions {
     pub thickness: f64,
     /// Pieces are not split below this width of v0.
     pub min_width: f64,
-    /// The first cut: this many equal pieces.
+    /// The first cut: this many equal pieces at least, and none wider than `first_width`.
     pub initial: usize,
+    /// The widest piece of the first cut (m/s): wider ones fail (measured at 1e-6 on the four
+    /// Table 1 sets: pieces of 0.077 all failed, of 0.038 half of them, of 0.019 one in 20).
+    pub first_width: f64,
     /// Most pieces in all.
     pub max_pieces: usize,
+    /// The Taylor order of the band's runs (replacing the options' order): measured on SHC DSS
+    /// pieces at v0 = 0.2, 1 and 4.5, order 12 proves the same slope widths (0.94–1.02×) in
+    /// 0.75–0.85× the time of order 16 (order 10: 0.8–0.95×, order 8: slower again).
+    pub order: usize,
 }
 
 impl Default for BandOptions {
@@ -121,7 +154,9 @@ impl Default for BandOptions {
             thickness: 1e-6,
             min_width: 1e-6,
             initial: 16,
+            first_width: 0.02,
             max_pieces: 20_000,
+            order: 12,
         }
     }
 }
@@ -171,10 +206,62 @@ pub fn prove_piece(
     })
 }
 
-/// Cuts [a, b] adaptively until every piece is proved and needs no more `parts` (0), or is at
-/// the minimum width; a proved piece is cut into `parts` equal parts (at least 2), one not
-/// proved is halved; pieces are proved in parallel (rayon). Returns the pieces in order, each with its
-/// result.
+/// The parts of a proved piece cut into `m` equal parts, each with its own centre (a point
+/// run) and the piece's slope enclosures and hulls: for v0 in a part [l, h] ⊆ [v_lo, v_hi],
+/// e(v0) ∈ e(c) + [de/dv0](v0 − c) by the mean-value theorem, as [de/dv0] holds on the whole
+/// piece (likewise T_s).
+pub fn sub_centres(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    piece: &BandPiece,
+    m: usize,
+    opts: &TaylorOptions,
+) -> Result<Vec<BandPiece>, RigorError> {
+    let (lo, hi) = (piece.v0_lo, piece.v0_hi);
+    let ends: Vec<f64> = (0..=m)
+        .map(|i| match i {
+            0 => lo,
+            i if i == m => hi,
+            i => lo + (hi - lo) * (i as f64) / (m as f64),
+        })
+        .collect();
+    ends.par_windows(2)
+        .map(|w| {
+            let (l, h) = (w[0], w[1]);
+            let c = short_centre(l, h);
+            let at_c = prove_piece(kind, base, c, c, opts)?;
+            let part = Interval::try_from((l, h)).expect("ordered ends");
+            let d = part - Interval::try_from((c, c)).expect("a double");
+            Ok(BandPiece {
+                v0_lo: l,
+                v0_hi: h,
+                v0_c: c,
+                e_c: at_c.e,
+                ts_c: at_c.ts,
+                de: piece.de,
+                dts: piece.dts,
+                e: (at_c.e + piece.de * d).intersection(piece.e),
+                ts: (at_c.ts + piece.dts * d).intersection(piece.ts),
+            })
+        })
+        .collect()
+}
+
+/// What becomes of a proved piece: kept as these pieces, or cut into this many parts to be
+/// proved again.
+pub enum Refine {
+    Keep(Vec<BandPiece>),
+    Cut(usize),
+}
+
+/// A piece of v0 with its result.
+type Outcome = (f64, f64, Result<BandPiece, RigorError>);
+
+/// Cuts [a, b] adaptively until every piece is proved and kept by `refine`, or is at the
+/// minimum width; a proved piece `refine` cuts is cut into that many equal parts (at least 2),
+/// one not proved is halved; pieces are proved in parallel (rayon). Returns the pieces in order,
+/// each with its result (a piece at the minimum width that `refine` would still cut, as
+/// proved).
 fn adapt(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -182,9 +269,14 @@ fn adapt(
     b: f64,
     bo: &BandOptions,
     opts: &TaylorOptions,
-    parts: impl Fn(&BandPiece) -> usize + Sync,
-) -> Vec<(f64, f64, Result<BandPiece, RigorError>)> {
-    let n = bo.initial.max(1);
+    refine: impl Fn(BandPiece) -> Refine + Sync,
+) -> Vec<Outcome> {
+    let by_width = ((b - a) / bo.first_width).ceil();
+    let n = if by_width.is_finite() && by_width < bo.max_pieces as f64 {
+        bo.initial.max(by_width as usize).max(1)
+    } else {
+        bo.initial.max(1)
+    };
     let cut: Vec<f64> = (0..=n)
         .map(|i| {
             if i == n {
@@ -195,22 +287,33 @@ fn adapt(
         })
         .collect();
     let mut todo: Vec<(f64, f64)> = cut.windows(2).map(|w| (w[0], w[1])).collect();
-    let mut done: Vec<(f64, f64, Result<BandPiece, RigorError>)> = Vec::new();
+    let mut done: Vec<Outcome> = Vec::new();
+    let kept: Mutex<Vec<Outcome>> = Mutex::new(Vec::new());
     while !todo.is_empty() {
-        let results: Vec<(f64, f64, Result<BandPiece, RigorError>)> = todo
+        let results: Vec<(f64, f64, Result<BandPiece, RigorError>, usize)> = todo
             .par_iter()
-            .map(|&(lo, hi)| (lo, hi, prove_piece(kind, base, lo, hi, opts)))
+            .map(|&(lo, hi)| match prove_piece(kind, base, lo, hi, opts) {
+                // a piece not proved is halved
+                Err(e) => (lo, hi, Err(e), 2),
+                Ok(p) => match refine(p.clone()) {
+                    Refine::Keep(parts) => {
+                        for q in parts {
+                            let (l, h) = (q.v0_lo, q.v0_hi);
+                            kept.lock().expect("no panic").push((l, h, Ok(q)));
+                        }
+                        (lo, hi, Ok(p), 0)
+                    }
+                    Refine::Cut(k) => (lo, hi, Ok(p), k),
+                },
+            })
             .collect();
         todo.clear();
-        for (lo, hi, r) in results {
-            // a piece not proved is halved
-            let k = r.as_ref().map_or(2, &parts);
-            let k = if k == 0 {
-                0
-            } else {
-                // no part narrower than min_width
-                k.clamp(2, 64).min(((hi - lo) / bo.min_width) as usize)
-            };
+        for (lo, hi, r, k) in results {
+            if k == 0 {
+                continue;
+            }
+            // no part narrower than min_width
+            let k = k.clamp(2, 64).min(((hi - lo) / bo.min_width) as usize);
             let cut: Vec<f64> = (0..=k)
                 .map(|i| match i {
                     0 => lo,
@@ -219,15 +322,36 @@ fn adapt(
                 })
                 .collect();
             let can_split = k >= 2 && cut.windows(2).all(|w| w[0] < w[1]);
-            if !can_split || done.len() + todo.len() + k > bo.max_pieces {
+            let count = done.len() + kept.lock().expect("no panic").len() + todo.len();
+            if !can_split || count + k > bo.max_pieces {
                 done.push((lo, hi, r));
             } else {
                 todo.extend(cut.windows(2).map(|w| (w[0], w[1])));
             }
         }
     }
+    done.extend(kept.into_inner().expect("no panic"));
     done.sort_by(|x, y| x.0.total_cmp(&y.0));
     done
+}
+
+/// The options of the band's runs: `bo.order`, and a largest width. A wide piece's run fails
+/// slowly (its set creeps through thousands of low-order steps up to `max_width`: 2.7 s for
+/// SHC DSS v0 ∈ [4, 4.0766], 1312 steps, against 0.06 s with a limit of 0.03); a state that
+/// wide cannot give a thin band, so the runs stop at 20·√target (0.02 at the default 1e-6) and
+/// the piece is halved.
+///
+/// The truncation tolerance is at least 10⁻⁶ × the target: the centres' point runs then prove
+/// e to ≈ 3e-11 instead of 3e-13 at the default 1e-6 (still 3·10⁻⁵ of the thickness), in
+/// 0.75–0.85× the time (SHC DSS and Maxwell DSA, v0 = 1, order 12; a looser 1e-10 is no
+/// faster).
+fn run_options(bo: &BandOptions, opts: &TaylorOptions) -> TaylorOptions {
+    TaylorOptions {
+        max_width: opts.max_width.min(20.0 * bo.thickness.sqrt()),
+        order: bo.order,
+        tol: opts.tol.max(1e-6 * bo.thickness),
+        ..opts.clone()
+    }
 }
 
 /// Proves the band of e (and T_s) over v0 ∈ [a, b] for base set `base`, with thickness at most
@@ -240,17 +364,27 @@ pub fn prove_band(
     bo: &BandOptions,
     opts: &TaylorOptions,
 ) -> Result<Band, RigorError> {
-    // the thickness of a proved piece grows like its width squared or faster (measured: about
-    // squared near 1e-6, faster on the first, wide pieces): cut a piece too thick into
-    // ⌈1.15·∛(thickness/target)⌉ parts instead of halving it again and again (the square root
-    // over-cut: v0 ∈ [2, 2.5] at 1e-5 took 88 pieces against 59 with the cube root)
+    let opts = &run_options(bo, opts);
     let done = adapt(kind, base, a, b, bo, opts, |p| {
         let t = p.thickness();
         if t <= bo.thickness {
-            0
-        } else {
-            ((t / bo.thickness).cbrt() * 1.15).ceil() as usize
+            return Refine::Keep(vec![p]);
         }
+        // sub-centres: the slope term wid[de]·w/2 falls like 1/m, the centre's own width stays
+        let own = p.e_c.wid() * 2.0 + 8.0 * f64::EPSILON * p.e.mag().max(1.0);
+        let room = bo.thickness - own;
+        let m = ((t - own) / room).ceil();
+        if room > 0.0
+            && m.is_finite()
+            && m <= MAX_SUB_CENTRES as f64
+            && let Ok(parts) = sub_centres(kind, base, &p, m as usize, opts)
+            && parts.iter().all(|q| q.thickness() <= bo.thickness)
+        {
+            return Refine::Keep(parts);
+        }
+        // cut for new range runs, aimed at AIM × the target
+        let parts = (t / (AIM * bo.thickness)).powf(1.0 / THICKNESS_POWER);
+        Refine::Cut(parts.ceil().max(2.0) as usize)
     });
     let mut pieces = Vec::with_capacity(done.len());
     for (lo, hi, r) in done {
@@ -307,8 +441,13 @@ pub fn prove_decreasing(
     bo: &BandOptions,
     opts: &TaylorOptions,
 ) -> Monotonicity {
+    let opts = &run_options(bo, opts);
     let done = adapt(kind, base, a, b, bo, opts, |p| {
-        if p.de.sup() < 0.0 { 0 } else { 2 }
+        if p.de.sup() < 0.0 {
+            Refine::Keep(vec![p])
+        } else {
+            Refine::Cut(2)
+        }
     });
     let mut out = Monotonicity {
         pieces: Vec::new(),
