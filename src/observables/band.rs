@@ -206,6 +206,18 @@ pub fn prove_piece(
     })
 }
 
+/// The ends of [lo, hi] cut into `k` equal parts: lo and hi exactly, the rest rounded (parts
+/// that share an end share the same double).
+fn equal_cuts(lo: f64, hi: f64, k: usize) -> Vec<f64> {
+    (0..=k)
+        .map(|i| match i {
+            0 => lo,
+            i if i == k => hi,
+            i => lo + (hi - lo) * (i as f64) / (k as f64),
+        })
+        .collect()
+}
+
 /// The parts of a proved piece cut into `m` equal parts, each with its own centre (a point
 /// run) and the piece's slope enclosures and hulls: for v0 in a part [l, h] ⊆ [v_lo, v_hi],
 /// e(v0) ∈ e(c) + [de/dv0](v0 − c) by the mean-value theorem, as [de/dv0] holds on the whole
@@ -217,15 +229,8 @@ pub fn sub_centres(
     m: usize,
     opts: &TaylorOptions,
 ) -> Result<Vec<BandPiece>, RigorError> {
-    let (lo, hi) = (piece.v0_lo, piece.v0_hi);
-    let ends: Vec<f64> = (0..=m)
-        .map(|i| match i {
-            0 => lo,
-            i if i == m => hi,
-            i => lo + (hi - lo) * (i as f64) / (m as f64),
-        })
-        .collect();
-    ends.par_windows(2)
+    equal_cuts(piece.v0_lo, piece.v0_hi, m)
+        .par_windows(2)
         .map(|w| {
             let (l, h) = (w[0], w[1]);
             let c = short_centre(l, h);
@@ -277,15 +282,7 @@ fn adapt(
     } else {
         bo.initial.max(1)
     };
-    let cut: Vec<f64> = (0..=n)
-        .map(|i| {
-            if i == n {
-                b
-            } else {
-                a + (b - a) * (i as f64) / (n as f64)
-            }
-        })
-        .collect();
+    let cut = equal_cuts(a, b, n);
     let mut todo: Vec<(f64, f64)> = cut.windows(2).map(|w| (w[0], w[1])).collect();
     let mut done: Vec<Outcome> = Vec::new();
     let kept: Mutex<Vec<Outcome>> = Mutex::new(Vec::new());
@@ -314,13 +311,7 @@ fn adapt(
             }
             // no part narrower than min_width
             let k = k.clamp(2, 64).min(((hi - lo) / bo.min_width) as usize);
-            let cut: Vec<f64> = (0..=k)
-                .map(|i| match i {
-                    0 => lo,
-                    i if i == k => hi,
-                    i => lo + (hi - lo) * (i as f64) / (k as f64),
-                })
-                .collect();
+            let cut = equal_cuts(lo, hi, k);
             let can_split = k >= 2 && cut.windows(2).all(|w| w[0] < w[1]);
             let count = done.len() + kept.lock().expect("no panic").len() + todo.len();
             if !can_split || count + k > bo.max_pieces {
