@@ -2,51 +2,23 @@
 //! centred forms, and the precision fallback, on the Hunt–Crossley limit of the NDBWSHCCM,
 //! whose CoR has a closed form.
 //!
-//! **The reference.** With B → 0 and Γ = 0, Ż = V, so Z = X and (κ + κ_c = 1)
-//! F = |X|^p(−sgn X − σV), and dV/dT = F, dX/dT = V give V dV/dX = F, i.e. for X < 0
-//! (compression) V dV/(1 − σV) = |X|^p dX. Over the contact X goes from 0 and back to 0, so
-//! ∫_{−1}^{e} V/(1 − σV) dV = 0, i.e. with u = σe
-//!
-//! ```text
-//! −u − ln(1 − u) = σ − ln(1 + σ)
-//! ```
-//!
-//! (the Hunt–Crossley restitution law; p does not enter). g(u) = −u − ln(1 − u) − c is
-//! increasing on (0, 1); its root is bracketed at 400 bits by the signs of g at u* ∓ 10⁻⁹⁰
-//! (|g| there ≈ g′·10⁻⁹⁰ ≫ the rounding ≈ 10⁻¹¹⁵), and every enclosure must contain the whole
-//! bracket (compared as exact rationals). The case uses B = 10⁻³⁰⁰ (𝓟 is open): its e differs
-//! from the limit's by ≈ 10⁻³⁰⁰, far inside the bracket's 10⁻⁹⁰.
+//! The reference is the Hunt–Crossley restitution law −u − ln(1 − u) = σ − ln(1 + σ), u = σe
+//! (derived in `tests/common/mod.rs`), its root bracketed to ±10⁻⁹⁰ at 400 bits; every
+//! enclosure must contain the whole bracket, compared as exact rationals.
 
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{ModelKind, NdParams, Shc};
 use bwcl::observables::precision::{FallbackBudget, ParamText, decide};
 use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
-use rug::{Float, Rational};
+use rug::Rational;
 use std::process::Command;
 
-const BITS: u32 = 400;
+mod common;
 
-/// The bracket [lo, hi] of the Hunt–Crossley e(σ), exact rationals.
+/// The bracket of the Hunt–Crossley e(σ) for a whole-number σ.
 fn hc_bracket(sigma: u32) -> (Rational, Rational) {
-    let f = |x: f64| Float::with_val(BITS, x);
-    let s = f(sigma as f64);
-    let c = s.clone() - (s.clone() + 1u32).ln();
-    let g = |u: &Float| -u.clone() - (Float::with_val(BITS, 1u32) - u).ln() - &c;
-    let mut u = f(0.5);
-    for _ in 0..400 {
-        let dg = Float::with_val(BITS, 1u32) / (Float::with_val(BITS, 1u32) - &u) - 1u32;
-        let mut next = u.clone() - g(&u) / dg;
-        if next >= 1u32 {
-            next = (u.clone() + 1u32) / 2u32;
-        }
-        u = next;
-    }
-    let eps = Float::with_val(BITS, Float::parse("1e-90").unwrap());
-    let (a, b) = (u.clone() - &eps, u.clone() + &eps);
-    assert!(g(&a) < 0u32 && g(&b) > 0u32, "the root is bracketed");
-    let r = |x: Float| x.to_rational().unwrap() / Rational::from(sigma);
-    (r(a), r(b))
+    common::hunt_crossley_bracket(&Rational::from(sigma))
 }
 
 fn rat(x: f64) -> Rational {

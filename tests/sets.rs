@@ -12,7 +12,10 @@ use bwcl::observables::band::{
 use bwcl::observables::sets::{Inputs, prove_over_set};
 use inari::Interval;
 
+mod common;
+
 const DSS_SHC: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";
+const DSA_SHC: &str = "0.63,-0.611,0.188,0.00594,1,2.02";
 const DSA_MX: &str = "0.44,-0.418,0.113,0.00785,1.27,3.14";
 
 fn iv(lo: f64, hi: f64) -> Interval {
@@ -62,11 +65,14 @@ fn spread(xs: impl Iterator<Item = Interval>) -> f64 {
 /// One range of each kind of input: the enclosure contains every sampled point enclosure
 /// (doubles compared exactly), and its width is within the factors of the sampled
 /// spread — v0 of the SHC DSS set (×1.2 for e, ×1.5 for T_s), κ and a variable exponent n of
-/// the Maxwell DSA set (×1.5).
+/// the Maxwell DSA set (×1.5), and n of the SHC DSA set over [1, 1.001] (n = 1 is the edge of
+/// 𝓟; ∂(|Z|^(n−1)Z)/∂n = |Z|^(n−1)Z·ln|Z| has no bounded enclosure at Z = 0, so this range is
+/// proved by the hull of the parameters as components, ×1.5).
 #[test]
 fn ranges_contain_their_points_and_are_tight() {
     let cases = [
         (ModelKind::Shc, DSS_SHC, 6, iv(0.999, 1.001), 1.2, 1.5),
+        (ModelKind::Shc, DSA_SHC, 4, iv(1.0, 1.001), 1.5, 1.5),
         (
             ModelKind::Maxwell,
             DSA_MX,
@@ -334,4 +340,61 @@ fn point_sensitivities_are_thin_and_inside_the_range_slopes() {
         s.e.subset(slope.e) && s.ts.subset(slope.ts),
         "{s:?} vs {slope:?}"
     );
+}
+
+/// A range whose true spread is known in closed form: the Hunt–Crossley limit of the NDBWSHCCM
+/// (B = 10⁻³⁰⁰, Γ = 0; `tests/common/mod.rs`), where e(σ) solves −u − ln(1 − u) = σ − ln(1 + σ),
+/// u = σe, and decreases in σ, so that over σ ∈ [σ₁, σ₂] the CoR fills exactly [e(σ₂), e(σ₁)].
+/// Its separation is degenerate (F = |X|^p(1 − σV) vanishes at X = 0 with F_t = 0, so T_s has no
+/// derivative in σ): the range is proved by the hull of the parameters as components. The
+/// enclosure must contain both ends' 400-bit brackets (exact rationals) and be within 1.5× the
+/// true spread; σ as the range, and v0 as the range of a base set (σ = σ_b·v0, B = B_b·v0^1.2
+/// carried with it).
+#[test]
+fn hunt_crossley_ranges_contain_the_closed_form_within_the_factor() {
+    use rug::Rational;
+    let rat = |x: f64| Rational::from_f64(x).unwrap();
+    let nd = |s: Interval| {
+        let mut p = NdParams::parse(ModelKind::Shc, "1e-300,0,0.5,12,1.5,1.5").unwrap();
+        p.sigma = s;
+        Inputs::Nd(p)
+    };
+    let v0 = iv(1.0, 1.001);
+    let cases = [
+        // (inputs, σ₁, σ₂) with σ exact rationals
+        (nd(iv(0.5, 0.5005)), rat(0.5), rat(0.5005)),
+        (nd(iv(2.0, 2.002)), rat(2.0), rat(2.002)),
+        (
+            base(ModelKind::Shc, "1e-300,0,0.5,0.5,1.5,1.5", v0),
+            rat(0.5) * rat(v0.inf()),
+            rat(0.5) * rat(v0.sup()),
+        ),
+    ];
+    for (inputs, s1, s2) in cases {
+        let r = prove_over_set(ModelKind::Shc, &inputs, &TaylorOptions::default())
+            .unwrap_or_else(|e| panic!("σ ∈ [{s1}, {s2}]: {e}"));
+        let (lo2, hi2) = common::hunt_crossley_bracket(&s2);
+        let (lo1, hi1) = common::hunt_crossley_bracket(&s1);
+        assert!(hi2 < lo1, "e decreases in σ");
+        assert!(
+            rat(r.e.inf()) <= lo2 && rat(r.e.sup()) >= hi1,
+            "σ ∈ [{s1}, {s2}]: e {:?} misses [{}, {}]",
+            r.e,
+            lo2.to_f64(),
+            hi1.to_f64()
+        );
+        // the true spread is at least lo1 − hi2
+        let spread = (lo1 - hi2).to_f64();
+        assert!(
+            r.e.wid() <= 1.5 * spread,
+            "σ ∈ [{s1}, {s2}]: e width {:e} vs the closed-form spread {spread:e}",
+            r.e.wid()
+        );
+        eprintln!(
+            "Hunt–Crossley σ ∈ [{}, {}]: e width / spread = {:.4}",
+            s1.to_f64(),
+            s2.to_f64(),
+            r.e.wid() / spread
+        );
+    }
 }

@@ -141,6 +141,35 @@ fn main() {
             writeln!(md, "{row}").unwrap();
         }
     }
+    // 2b. the Hunt–Crossley limit: a crossing that is not transversal (F = |X|^p(1 − σV) at
+    // X = 0), e by the partial form, T_s by its hull (tests/sets.rs checks e against the
+    // closed form −u − ln(1 − u) = σ − ln(1 + σ), u = σe)
+    writeln!(
+        md,
+        "\n### The Hunt–Crossley limit (B = 1e-300, Γ = 0, κ = 0.5, n = p = 1.5): σ over a \
+         relative width of 1e-3\n"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "F and dF/dT vanish together at T_s, so T_s has no derivative in σ: e by the partial form \
+         e(û) + [∂V/∂u](u − û) + [dV/dT]([T_s] − [T_s]), T_s by its hull (its ratio is not a \
+         floor of the issue).\n"
+    )
+    .unwrap();
+    writeln!(md, "| σ | e ratio | T_s ratio | time |").unwrap();
+    writeln!(md, "|---|---:|---:|---:|").unwrap();
+    for (s0, s1) in [(0.5, 0.5005), (2.0, 2.002), (5.0, 5.005)] {
+        let inputs = Inputs::Nd(NdParams::parse(ModelKind::Shc, "1e-300,0,0.5,1,1.5,1.5").unwrap());
+        let label = format!("[{s0}, {s1}]");
+        match ratio(ModelKind::Shc, &inputs, 3, iv(s0, s1), 20) {
+            Ok((e, t, ms)) => writeln!(md, "| {label} | {e:.3} | {t:.2} | {ms:.0} ms |").unwrap(),
+            Err(why) => {
+                let short: String = why.chars().take(90).collect();
+                writeln!(md, "| {label} | not proved: {short} | | |").unwrap()
+            }
+        }
+    }
     // 3. all six at once
     writeln!(
         md,

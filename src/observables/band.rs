@@ -28,7 +28,7 @@
 //! equation holds almost everywhere); pieces where the slope's sign is not decided are split
 //! down to a minimum width and then named.
 
-use super::sets::{Inputs, SetEnclosure, prove_over_set, short_centre};
+use super::sets::{Inputs, SetEnclosure, prove_over_set_with_slopes, short_centre};
 use crate::engines::taylor::{RigorError, TaylorOptions};
 use crate::models::{ModelKind, NdParams};
 use inari::Interval;
@@ -178,8 +178,17 @@ pub fn prove_piece(
         base: base.clone(),
         v0,
     };
-    let r: SetEnclosure = prove_over_set(kind, &inputs, opts)?;
+    let r: SetEnclosure = prove_over_set_with_slopes(kind, &inputs, opts)?;
     let (Some(slope), Some((c, ts_c, e_c))) = (r.slope, r.centre) else {
+        if lo < hi {
+            // (prove_over_set_with_slopes gives a range its slope; a piece's affine form and
+            // its sub-centres need it)
+            return Err(RigorError {
+                reason: "no slope over the piece".into(),
+                t: 0.0,
+                width: 0.0,
+            });
+        }
         // a point range (lo = hi): no slope needed
         return Ok(BandPiece {
             v0_lo: lo,

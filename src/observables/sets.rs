@@ -220,12 +220,37 @@ fn param_error(e: ParamError) -> RigorError {
 }
 
 /// Encloses T_s and e of model `kind` for every value of `inputs` (ranges allowed in any of
-/// them). No range: the point engine. One range: the variational system (hull ∩ mean-value
-/// form, and the slopes). More: the parameters as components (the hull).
+/// them). No range: the point engine. Ranges: the variational system, one run per ranged input
+/// (hull ∩ mean-value form, and with one range its slopes). One range whose crossing at T_s is
+/// not transversal (F and its time derivative vanish together, as in the Hunt–Crossley limit,
+/// where F = |X|^p(1 − σV) at X = 0, so dT_s/du = −F_u/F_t is 0/0): e by the partial form of
+/// [`Dependence::Partial`], T_s by its hull, no slope. Where no derivative can be carried — the
+/// S block grows too wide, or ∂f/∂u is unbounded near a branch point (n → 1:
+/// ∂(|Z|^(n−1)Z)/∂n = |Z|^(n−1)Z·ln|Z|), or several ranges and a crossing that is not
+/// transversal — the parameters as components alone: the hull, with no slope.
 pub fn prove_over_set(
     kind: ModelKind,
     inputs: &Inputs<Interval>,
     opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError> {
+    prove(kind, inputs, opts, true)
+}
+
+/// [`prove_over_set`] without the hull: a range whose slope cannot be carried is not proved
+/// (the band, whose pieces are affine forms in v0, needs the slope; a failed piece is cut).
+pub fn prove_over_set_with_slopes(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError> {
+    prove(kind, inputs, opts, false)
+}
+
+fn prove(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+    hull_fallback: bool,
 ) -> Result<SetEnclosure, RigorError> {
     let nd = inputs.nd(kind).map_err(param_error)?;
     let vals = inputs.values();
@@ -256,15 +281,15 @@ pub fn prove_over_set(
             variational::<_, 4, 10, 18>(Maxwell::new, kind, inputs, &ranges, d, opts)
         }
     };
-    let runs: Vec<_> = match (0..ranges.len())
+    let runs: Vec<VarRun> = match (0..ranges.len())
         .into_par_iter()
         .map(one)
         .collect::<Result<Vec<_>, _>>()
+        .and_then(|runs| usable(runs, hull_fallback))
     {
         Ok(r) => r,
-        // a derivative that cannot be carried (the S block too wide): the hull of the
-        // parameters as components alone
-        Err(e) if ranges.len() > 1 => {
+        // a derivative that cannot be carried: the hull of the parameters as components alone
+        Err(e) if hull_fallback => {
             return match kind {
                 ModelKind::Shc => hull::<_, 3, 13>(Shc::new, kind, inputs, &ranges, opts),
                 ModelKind::Maxwell => hull::<_, 4, 14>(Maxwell::new, kind, inputs, &ranges, opts),
@@ -276,14 +301,13 @@ pub fn prove_over_set(
         }
         Err(e) => return Err(e),
     };
-    let mut ts_h = runs[0].0;
-    let mut e_h = runs[0].1;
+    let mut ts_h = runs[0].ts;
+    let mut e_h = runs[0].e;
     for r in &runs[1..] {
-        ts_h = ts_h.intersection(r.0);
-        e_h = e_h.intersection(r.1);
+        ts_h = ts_h.intersection(r.ts);
+        e_h = e_h.intersection(r.e);
     }
-    let slopes: Vec<Slope> = runs.iter().map(|r| r.2).collect();
-    let steps = runs.iter().map(|r| r.3).max().unwrap_or(0);
+    let steps = runs.iter().map(|r| r.steps).max().unwrap_or(0);
     // the mean-value form around the centre û (each range at a short point near its middle)
     let mut cv = vals.clone();
     let mut du = Vec::with_capacity(ranges.len());
@@ -299,9 +323,20 @@ pub fn prove_over_set(
         .map_err(param_error)?;
     let c = point(kind, centre, opts)?;
     let (mut ts_mv, mut e_mv) = (c.ts, c.e);
-    for (s, d) in slopes.iter().zip(&du) {
-        ts_mv += s.ts * *d;
-        e_mv += s.e * *d;
+    let mut slopes = Vec::with_capacity(runs.len());
+    for (r, d) in runs.iter().zip(&du) {
+        match r.slope {
+            Some(s) => {
+                ts_mv += s.ts * *d;
+                e_mv += s.e * *d;
+                slopes.push(s);
+            }
+            None => {
+                // (one range: see `usable`) T_s keeps its hull
+                ts_mv = Interval::ENTIRE;
+                e_mv = partial_form(e_mv, r.dv_du, r.dv_dt, r.ts, *d);
+            }
+        }
     }
     let ts = ts_h.intersection(ts_mv);
     let e = e_h.intersection(e_mv);
@@ -321,7 +356,7 @@ pub fn prove_over_set(
             width: 0.0,
         });
     }
-    let one = ranges.len() == 1;
+    let one = ranges.len() == 1 && slopes.len() == 1;
     Ok(SetEnclosure {
         ts,
         e,
@@ -415,7 +450,7 @@ pub fn sensitivity(
         ModelKind::Shc => variational::<_, 3, 1, 7>(Shc::new, kind, inputs, &[j], 0, opts),
         ModelKind::Maxwell => variational::<_, 4, 1, 9>(Maxwell::new, kind, inputs, &[j], 0, opts),
     }?;
-    Ok(r.2)
+    r.slope.ok_or_else(|| r.no_derivative())
 }
 
 fn point(
@@ -480,13 +515,78 @@ fn model_start<R: Real, M: CollisionModel<R, N>, const N: usize, const D: usize>
     Ok(())
 }
 
+/// One run of the variational system: the hull of T_s and e over the set, and how they depend
+/// on the run's input u.
+struct VarRun {
+    ts: Interval,
+    e: Interval,
+    /// The crossing at T_s is transversal: the total derivatives dT_s/du = −F_u/F_t and
+    /// de/du = V_u + V_t·dT_s/du over the whole set.
+    slope: Option<Slope>,
+    /// ∂V/∂u and dV/dT over the event's box, for [`partial_form`] (which needs no
+    /// transversality).
+    dv_du: Interval,
+    dv_dt: Interval,
+    steps: usize,
+}
+
+/// e over a range of one input u, when T_s may have no derivative (F and F_t vanish together
+/// at T_s, as in the Hunt–Crossley limit, where F = |X|^p(1 − σV) at X = 0): e(u) = V(T_s(u), u)
+/// splits as
+///
+/// ```text
+/// e(u) − e(û) = [V(T_s(u), u) − V(T_s(u), û)] + [V(T_s(u), û) − V(T_s(û), û)]
+///             ∈ [∂V/∂u](u − û) + [dV/dT]([T_s] − [T_s])
+/// ```
+///
+/// (the mean-value theorem in u at a fixed time, then in T at û), both enclosures over the
+/// event's box: every time of [T_s] ∋ T_s(u), T_s(û), every u of the set. Near such a
+/// separation dV/dT = F is small (V̇ = F in both models), so e keeps its dependence on u.
+fn partial_form(
+    e_c: Interval,
+    dv_du: Interval,
+    dv_dt: Interval,
+    ts: Interval,
+    du: Interval,
+) -> Interval {
+    // (interval subtraction: [T_s] − [T_s] = [−w, w], not 0)
+    #[allow(clippy::eq_op)]
+    let dts = ts - ts;
+    e_c + dv_du * du + dv_dt * dts
+}
+
+impl VarRun {
+    fn no_derivative(&self) -> RigorError {
+        RigorError {
+            reason: NO_DERIVATIVE.into(),
+            t: self.ts.sup(),
+            width: self.ts.wid(),
+        }
+    }
+}
+
+const NO_DERIVATIVE: &str =
+    "the crossing at T_s is not transversal over the whole range (no derivative)";
+
+/// The runs whose dependences combine into a mean-value form: all of them with a slope (their
+/// total derivatives add up along u − û), or one range with [`partial_form`]; else `Err` (the
+/// caller may take the hull). The partial form of one input among several would need the
+/// other inputs' partial derivatives at once, and the band (`with_partial` false) needs the
+/// slope.
+fn usable(runs: Vec<VarRun>, with_partial: bool) -> Result<Vec<VarRun>, RigorError> {
+    match runs.iter().find(|r| r.slope.is_none()) {
+        Some(r) if !(with_partial && runs.len() == 1) => Err(r.no_derivative()),
+        _ => Ok(runs),
+    }
+}
+
 type V1 = Dual<Rec<Interval>, 1>;
 
 /// The system (x, u, S) of the module doc: the K ranged inputs `js` as parameter components
 /// (padded to KP slots, unused ones 0), and S = ∂x/∂u for the one input `js[d]` — D = N + KP + N
-/// components (x, u, S); outputs F, V, ∂F/∂u, ∂V/∂u. (One derivative per run: with all of S
+/// components (x, u, S); outputs F, V, ∂F/∂u, ∂V/∂u, dV/dT. (One derivative per run: with all of S
 /// = ∂x/∂u at once, Lohner's basis would mix the large S block into x's directions and wrap.)
-/// Returns the event's (T_s, e), the slope in `js[d]` and the steps.
+/// Returns the hull of (T_s, e) over the set, the dependence on `js[d]` and the steps.
 fn variational<M, const N: usize, const KP: usize, const D: usize>(
     build: impl Fn(NdParams<V1>) -> M,
     kind: ModelKind,
@@ -494,7 +594,7 @@ fn variational<M, const N: usize, const KP: usize, const D: usize>(
     js: &[usize],
     d: usize,
     opts: &TaylorOptions,
-) -> Result<(Interval, Interval, Slope, usize), RigorError>
+) -> Result<VarRun, RigorError>
 where
     M: CollisionModel<V1, N>,
 {
@@ -527,10 +627,29 @@ where
         });
         let f = m.field(&xs);
         let (force, vel) = (m.force(&xs), m.velocity(&xs));
+        // dV/dT = ∇V·f, on the state alone (every input's derivative 0): evaluated on a box
+        // it needs no jet, so it also bounds dV/dT where a branch point is in the box
+        let nd0 = inputs
+            .with_values(
+                (0..vals.len())
+                    .map(|i| match js.iter().position(|&j| j == i) {
+                        Some(slot) => V1::constant(v[N + slot].clone()),
+                        None => V1::constant(Rec::constant(vals[i])),
+                    })
+                    .collect(),
+            )
+            .nd(kind)
+            .expect("validated as intervals");
+        let xt: [V1; N] = std::array::from_fn(|i| Dual {
+            v: v[i].clone(),
+            d: [f[i].v.clone()],
+        });
+        let vel_t = build(nd0).velocity(&xt);
         let mut o: Vec<Rec<Interval>> = f.iter().map(|c| c.v.clone()).collect();
         o.extend((0..KP).map(|_| Rec::constant(Interval::zero())));
         o.extend(f.iter().map(|c| c.d[0].clone()));
         o.extend([force.v, vel.v, force.d[0].clone(), vel.d[0].clone()]);
+        o.push(vel_t.d[0].clone());
         o
     });
     // x(0) from the model, u(0) = U, S(0) = 0
@@ -617,13 +736,19 @@ where
             );
         }
     }
-    let slope = slope.ok_or_else(|| RigorError {
-        reason: "the crossing at T_s is not transversal over the whole range (no derivative)"
-            .into(),
-        t: ev.ts.sup(),
-        width: ev.ts.wid(),
-    })?;
-    Ok((ev.ts, ev.e, slope, flow.len()))
+    Ok(VarRun {
+        ts: ev.ts,
+        e: ev.e,
+        slope,
+        dv_du,
+        // with the jet its time-centred form; else ∇V·f on the event's box (no jet needed)
+        dv_dt: if jet {
+            rate(D + 1).intersection(o[D + 4])
+        } else {
+            o[D + 4]
+        },
+        steps: flow.len(),
+    })
 }
 
 /// The system (x, u_1, …, u_K) padded to [`MAX_UNCERTAIN`] parameter components: D = N + 10.
@@ -682,6 +807,63 @@ mod tests {
         Inputs::Base {
             base: NdParams::parse(kind, text).unwrap(),
             v0: iv(v0),
+        }
+    }
+
+    /// The partial form on a closed form: V(T, u) = u + T and T_s(u) = u² on u ∈ [0, 1], so
+    /// e(u) = u + u² fills [0, 2]; around û = 1/2 with [∂V/∂u] = [dV/dT] = 1 and [T_s] = [0, 1]
+    /// the form must contain [0, 2] (without its time term it would be [1/4, 5/4]).
+    #[test]
+    fn the_partial_form_holds_on_a_closed_form() {
+        let one = Interval::one();
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
+        let e = partial_form(iv(0.75, 0.75), one, one, iv(0.0, 1.0), iv(-0.5, 0.5));
+        assert!(iv(0.0, 2.0).subset(e), "{e:?}");
+    }
+
+    /// The partial form of e (the one taken where T_s has no derivative), on a range where it
+    /// is not needed but its time term matters: v0 ∈ [0.99, 1.01] of SHC DSS, where T_s spreads
+    /// over ≈ 10⁻² and dV/dT = F moves away from 0 across that window. Every sampled point
+    /// enclosure (ends included, doubles compared exactly) lies inside; without the time term
+    /// [dV/dT]([T_s] − [T_s]) it would not.
+    #[test]
+    fn the_partial_form_contains_sampled_points() {
+        let inp = base(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27", "1");
+        let mut vals = inp.values();
+        let (lo, hi) = (0.99, 1.01);
+        vals[6] = Interval::try_from((lo, hi)).unwrap();
+        let set = inp.with_values(vals.clone());
+        let opts = TaylorOptions::default();
+        let r = variational::<_, 3, 1, 7>(Shc::new, ModelKind::Shc, &set, &[6], 0, &opts).unwrap();
+        let uc = short_centre(lo, hi);
+        let c = Interval::try_from((uc, uc)).unwrap();
+        let mut cv = vals.clone();
+        cv[6] = c;
+        let centre = point(
+            ModelKind::Shc,
+            inp.with_values(cv).nd(ModelKind::Shc).unwrap(),
+            &opts,
+        )
+        .unwrap();
+        let e = partial_form(centre.e, r.dv_du, r.dv_dt, r.ts, vals[6] - c);
+        // the time term is a real part of it here
+        let time = 2.0 * r.dv_dt.mag() * r.ts.wid();
+        eprintln!("time term {time:e} of {:e}", e.wid());
+        assert!(time > 0.05 * e.wid(), "time term {time:e} of {:e}", e.wid());
+        for i in 0..=8 {
+            let x = if i == 8 {
+                hi
+            } else {
+                lo + (hi - lo) * i as f64 / 8.0
+            };
+            let mut v = vals.clone();
+            v[6] = Interval::try_from((x, x)).unwrap();
+            let p = prove_over_set(ModelKind::Shc, &inp.with_values(v), &opts).unwrap();
+            assert!(
+                p.e.subset(e),
+                "v0 = {x}: {:?} not in the partial form {e:?}",
+                p.e
+            );
         }
     }
 

@@ -1,0 +1,44 @@
+//! What several integration tests share: the Hunt–Crossley closed form of the CoR.
+//!
+//! **The reference.** With B → 0 and Γ = 0 the NDBWSHCCM (eq:BWSHCCM_nd) has Ż = V, so Z = X
+//! and (κ + κ_c = 1) F = |X|^p(−sgn X − σV); dV/dT = F and dX/dT = V give V dV/dX = F, i.e. for
+//! X < 0 (compression) V dV/(1 − σV) = |X|^p dX. Over the contact X goes from 0 and back to 0,
+//! so ∫_{−1}^{e} V/(1 − σV) dV = 0, i.e. with u = σe
+//!
+//! ```text
+//! −u − ln(1 − u) = σ − ln(1 + σ)
+//! ```
+//!
+//! (the Hunt–Crossley restitution law; p does not enter). g(u) = −u − ln(1 − u) − c is
+//! increasing on (0, 1); its root is bracketed at 400 bits by the signs of g at u* ∓ 10⁻⁹⁰
+//! (|g| there ≈ g′·10⁻⁹⁰ ≫ the rounding ≈ 10⁻¹¹⁵), and an enclosure must contain the whole
+//! bracket (compared as exact rationals). The cases use B = 10⁻³⁰⁰ (𝓟 is open): their e differs
+//! from the limit's by ≈ 10⁻³⁰⁰, far inside the bracket's 10⁻⁹⁰.
+
+use rug::{Float, Rational};
+
+const BITS: u32 = 400;
+
+/// The bracket [lo, hi] of the Hunt–Crossley e(σ), exact rationals, for a rational σ > 0 (taken
+/// to 400 bits: the root moves by ≈ 10⁻¹²⁰, far inside the bracket).
+pub fn hunt_crossley_bracket(sigma: &Rational) -> (Rational, Rational) {
+    assert!(*sigma > 0u32);
+    let one = || Float::with_val(BITS, 1u32);
+    let s = Float::with_val(BITS, sigma);
+    let c = s.clone() - (s.clone() + 1u32).ln();
+    let g = |u: &Float| -u.clone() - (one() - u).ln() - &c;
+    let mut u = Float::with_val(BITS, 0.5);
+    for _ in 0..400 {
+        let dg = one() / (one() - &u) - 1u32;
+        let mut next = u.clone() - g(&u) / dg;
+        if next >= 1u32 {
+            next = (u.clone() + 1u32) / 2u32;
+        }
+        u = next;
+    }
+    let eps = Float::with_val(BITS, Float::parse("1e-90").unwrap());
+    let (a, b) = (u.clone() - &eps, u.clone() + &eps);
+    assert!(g(&a) < 0u32 && g(&b) > 0u32, "the root is bracketed");
+    let r = |x: Float| x.to_rational().unwrap() / sigma;
+    (r(a), r(b))
+}
