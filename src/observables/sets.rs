@@ -627,15 +627,13 @@ where
         });
         let f = m.field(&xs);
         let (force, vel) = (m.force(&xs), m.velocity(&xs));
-        // dV/dT = ∇V·f, on the state alone (every input's derivative 0): evaluated on a box
-        // it needs no jet, so it also bounds dV/dT where a branch point is in the box
+        // dV/dT = ∇V·f, the inputs constants (each ranged one as its whole range, which holds
+        // its value: no new work per step on the parameter components): evaluated on a box it
+        // needs no jet, so it also bounds dV/dT where a branch point is in the box
         let nd0 = inputs
             .with_values(
-                (0..vals.len())
-                    .map(|i| match js.iter().position(|&j| j == i) {
-                        Some(slot) => V1::constant(v[N + slot].clone()),
-                        None => V1::constant(Rec::constant(vals[i])),
-                    })
+                vals.iter()
+                    .map(|&x| V1::constant(Rec::constant(x)))
                     .collect(),
             )
             .nd(kind)
