@@ -8,16 +8,12 @@ use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+mod common;
+use common::bwcl;
+
 const DSS: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";
 const BASEBALL: &str =
     "m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925";
-
-fn bwcl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bwcl"))
-        .args(args)
-        .output()
-        .expect("bwcl runs")
-}
 
 fn stdout(o: &Output) -> String {
     String::from_utf8(o.stdout.clone()).unwrap()

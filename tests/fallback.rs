@@ -12,9 +12,9 @@ use bwcl::observables::precision::{FallbackBudget, ParamText, decide};
 use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
 use rug::Rational;
-use std::process::Command;
 
 mod common;
+use common::bwcl;
 
 /// The bracket of the Hunt–Crossley e(σ) for a whole-number σ.
 fn hc_bracket(sigma: u32) -> (Rational, Rational) {
@@ -114,13 +114,6 @@ fn the_fallback_does_not_run_where_precision_cannot_help() {
         &FallbackBudget::default(),
     );
     assert!(d.enclosure.is_none() && d.attempts.is_empty());
-}
-
-fn bwcl(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_bwcl"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

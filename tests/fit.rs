@@ -10,20 +10,15 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde_json::Value;
 use std::path::PathBuf;
-use std::process::{Command, Output};
+
+mod common;
+use common::bwcl;
 
 const DSS: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";
 const MAXWELL_DSA: &str = "0.44,-0.418,0.113,0.00785,1.27,3.14";
 
 fn synthetic() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paper_repro/data/synthetic_dss.csv")
-}
-
-fn bwcl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bwcl"))
-        .args(args)
-        .output()
-        .expect("bwcl runs")
 }
 
 fn text(b: &[u8]) -> String {

@@ -64,6 +64,7 @@ __all__ = [
     "FitResult",
     "FitStart",
     "FitProgress",
+    "FallbackRun",
     "NotProvedError",
     "TABLE1",
 ]
@@ -261,6 +262,16 @@ class CorResult:
         return len(self.e)
 
 
+class FallbackRun(NamedTuple):
+    """One run of the precision fallback of :func:`cor_rigorous`: MPFR intervals of ``bits``
+    bits, ``seconds`` of wall time, proved or not (``reason``)."""
+
+    bits: int
+    seconds: float
+    proved: bool
+    reason: Optional[str]
+
+
 @dataclass(frozen=True, eq=False)
 class RigorousResult:
     """Proved enclosures of :func:`cor_rigorous`, one entry per case (in order).
@@ -282,6 +293,10 @@ class RigorousResult:
     width_ts_text, width_e_text : the widths as decimals rounded up, or None.
     ts_seconds : with ``physical``: (n, 2) an enclosure of T_s·T_c [s].
     params : (n, 6, 2) the enclosures of P = (B, Γ, κ, σ, n, p) of each case.
+    bits : per case the precision of the run that proved it (or was tried last): 53 for the
+        f64-interval engine, 128/192/256 where the precision fallback decided it.
+    fallback : per case None, or the precision fallback's runs as
+        ``FallbackRun(bits, seconds, proved, reason)``, in order.
     """
 
     model: str
@@ -303,6 +318,8 @@ class RigorousResult:
     ts_seconds: Optional[np.ndarray] = None
     horizon: float = 100.0
     order: int = 16
+    bits: Tuple[int, ...] = ()
+    fallback: Tuple[Optional[Tuple["FallbackRun", ...]], ...] = ()
     seconds: float = 0.0
     threads: int = 0
 
@@ -482,6 +499,8 @@ def cor_rigorous(
     pieces: int = 32,
     threads: Optional[int] = None,
     raise_on_failure: bool = False,
+    fallback_bits: int = 256,
+    fallback_seconds: float = 60.0,
 ) -> RigorousResult:
     """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
     Taylor engine, one case per impact speed.
@@ -503,15 +522,24 @@ def cor_rigorous(
     order : Taylor order K of the engine, 2 ≤ K ≤ 40.
     pieces : most sub-ranges of a range input, 1 ≤ N ≤ 1024.
     threads : the size of this call's thread pool.
+    fallback_bits : a point case that double precision cannot decide ("grazing or
+        undecidable", "grew too wide", "cannot cross") is tried again on MPFR intervals at
+        128, 192, then 256 bits, up to this many (0, 128, 192 or 256; 0 turns it off).
+    fallback_seconds : wall-clock budget of each precision of the fallback, 0 < S ≤ 3600.
 
     Returns
     -------
     RigorousResult: ``ts``, ``e`` (n, 2) float bounds, ``ts_text``, ``e_text`` the decimals
-    rounded outward, ``status`` and ``reason`` per case.
+    rounded outward, ``status`` and ``reason`` per case, ``bits`` the precision that decided
+    it.
     """
     argv = ["cor"] + _source(model, base, nd, physical, True)
     argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
     argv += [f"--order={_num(order, 'order')}", f"--pieces={_num(pieces, 'pieces')}"]
+    argv += [
+        f"--fallback-bits={_num(fallback_bits, 'fallback_bits')}",
+        f"--fallback-seconds={_num(fallback_seconds, 'fallback_seconds')}",
+    ]
     tokens = None if v0 is None else _speed_tokens(v0, True)
     d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, threads=_threads(threads))
     n = len(d["proved"])
@@ -537,6 +565,11 @@ def cor_rigorous(
         order=d["order"],
         seconds=d["seconds"],
         threads=d["threads"],
+        bits=tuple(d["bits"]),
+        fallback=tuple(
+            None if runs is None else tuple(FallbackRun(*r) for r in runs)
+            for runs in d["fallback"]
+        ),
     )
     if raise_on_failure and not res.proved.all():
         bad = [i for i in range(n) if not res.proved[i]]

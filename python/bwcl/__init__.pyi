@@ -42,6 +42,12 @@ class CorResult:
     def ok(self) -> npt.NDArray[np.bool_]: ...
     def __len__(self) -> int: ...
 
+class FallbackRun(NamedTuple):
+    bits: int
+    seconds: float
+    proved: bool
+    reason: Optional[str]
+
 class RigorousResult:
     model: str
     status: Tuple[str, ...]
@@ -64,6 +70,8 @@ class RigorousResult:
     order: int
     seconds: float
     threads: int
+    bits: Tuple[int, ...]
+    fallback: Tuple[Optional[Tuple[FallbackRun, ...]], ...]
     def __len__(self) -> int: ...
 
 class TrajectoryResult:
@@ -145,6 +153,8 @@ def cor_rigorous(
     pieces: int = ...,
     threads: Optional[int] = ...,
     raise_on_failure: bool = ...,
+    fallback_bits: int = ...,
+    fallback_seconds: float = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,

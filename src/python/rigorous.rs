@@ -101,6 +101,21 @@ pub fn cor_rigorous<'py>(
         "reason",
         rows.iter().map(|r| r.reason.clone()).collect::<Vec<_>>(),
     )?;
+    // the precision that proved each case, and the precision fallback's runs (bits, seconds,
+    // proved, reason) where it ran
+    d.set_item("bits", rows.iter().map(|r| r.bits).collect::<Vec<_>>())?;
+    d.set_item(
+        "fallback",
+        rows.iter()
+            .map(|r| {
+                r.fallback.as_ref().map(|runs| {
+                    runs.iter()
+                        .map(|f| (f.bits, f.seconds, f.proved, f.reason.clone()))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect::<Vec<_>>(),
+    )?;
     d.set_item("horizon", opts.horizon)?;
     d.set_item("order", opts.order)?;
     d.set_item("seconds", seconds)?;

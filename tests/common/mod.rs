@@ -1,4 +1,5 @@
-//! What several integration tests share: the Hunt–Crossley closed form of the CoR.
+//! What several integration tests share: the `bwcl` program, and the Hunt–Crossley closed form
+//! of the CoR.
 //!
 //! **The reference.** With B → 0 and Γ = 0 the NDBWSHCCM (eq:BWSHCCM_nd) has Ż = V, so Z = X
 //! and (κ + κ_c = 1) F = |X|^p(−sgn X − σV); dV/dT = F and dX/dT = V give V dV/dX = F, i.e. for
@@ -15,7 +16,19 @@
 //! bracket (compared as exact rationals). The cases use B = 10⁻³⁰⁰ (𝓟 is open): their e differs
 //! from the limit's by ≈ 10⁻³⁰⁰, far inside the bracket's 10⁻⁹⁰.
 
+// (each test crate uses its own part of this module)
+#![allow(dead_code)]
+
 use rug::{Float, Rational};
+use std::process::{Command, Output};
+
+/// Runs the `bwcl` program with `args` and waits for it.
+pub fn bwcl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bwcl"))
+        .args(args)
+        .output()
+        .expect("bwcl runs")
+}
 
 const BITS: u32 = 400;
 

@@ -78,3 +78,23 @@ def test_not_proved_per_case_and_raised():
     assert err.result.status == ("not proved",)
     ok = bwcl.cor_rigorous("shc", base=DSS, v0=[1], raise_on_failure=True)
     assert ok.status == ("proved",)
+
+
+def test_the_precision_that_decided_is_reported():
+    """The Hunt–Crossley limit at σ = 30 is undecidable with f64 intervals and proved by the
+    precision fallback at 128 bits (tests/fallback.rs checks its e against the closed form):
+    ``bits`` names the precision and ``fallback`` the runs; with the fallback off it is not
+    proved; an ordinary case is decided at 53 bits with no fallback run."""
+    nd = ["1e-300", 0, 0.5, 30, 1.5, 1.5]
+    q = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=128)
+    assert q.proved[0] and q.bits == (128,)
+    (run,) = q.fallback[0]
+    assert isinstance(run, bwcl.FallbackRun) and run.bits == 128 and run.proved
+    assert run.reason is None and run.seconds > 0
+    assert 0.0333 < q.e[0, 0] <= q.e[0, 1] < 0.0334
+    off = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=0)
+    assert not off.proved[0] and off.bits == (53,) and off.fallback == (None,)
+    assert "undecidable" in off.reason[0]
+    plain = bwcl.cor_rigorous("shc", base=DSS, v0=[0.5, 1])
+    assert plain.proved.all() and plain.bits == (53, 53) and plain.fallback == (None, None)
+    assert pickle.loads(pickle.dumps(q)).fallback == q.fallback
