@@ -163,8 +163,10 @@ fn check_start(p: &str, delta: f64) -> [Interval; 3] {
         "p = {p}: z − x = {:?}",
         x1[1] - x1[0]
     );
-    // an enclosure, not everything: a few ulps of 1/2
-    assert!(e1.wid() < 1e-14, "p = {p}, δ = {delta}: {e1:?}");
+    // an enclosure, not everything: a few ulps of 1/2 at the default δ (the remainder grows
+    // like δ^M beyond it)
+    let tight = if delta <= opts.start_delta { 1e-14 } else { 1e-10 };
+    assert!(e1.wid() < tight, "p = {p}, δ = {delta}: {e1:?}");
     x1
 }
 
