@@ -178,3 +178,46 @@ fn the_start_step_keeps_the_energy_of_the_hertz_oscillator() {
         }
     }
 }
+
+/// A pair whose second component is not a copy: ẋ = v, ż = v(1 + z)², v̇ = −½|x|^(p−1)x −
+/// ½|z|^(p−1)z(1 + z)² from x = z = 0, v = −1. Then z = x/(1 − x) (dz/dx = (1 + z)²), so z's
+/// W = 1/(1 + u) is not constant (x = −u), and E = v²/2 + (|x|^(p+1) + |z|^(p+1))/(2(p+1)) =
+/// 1/2 (Ė = 0 term by term). The start step's box at t₁ must hold E = 1/2 and z(1 − x) − x = 0.
+fn check_start_pair(p: &str, delta: f64) {
+    let q = Interval::parse_decimal(p).unwrap();
+    let half = Interval::try_from((0.5, 0.5)).unwrap();
+    let tape = Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+        let one_z = v[1].shift(&Interval::one());
+        let sq = one_z.clone() * one_z;
+        vec![
+            v[2].clone(),
+            v[2].clone() * sq.clone(),
+            -(Scalar::spow(&v[0], &q) + Scalar::spow(&v[1], &q) * sq).scale(&half),
+        ]
+    });
+    let opts = SingularOptions::default();
+    let st = SingularTape::of(&tape, &opts).expect("constant exponents");
+    let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
+    let x0 = [ZERO, ZERO, -ONE];
+    let out = start::start_step(&st.tape, &basis, &tape, 0.0, &x0, delta, &opts)
+        .unwrap_or_else(|| panic!("p = {p}: the start step is refused"));
+    let [x, z, v] = out.x1;
+    assert!(x.sup() < 0.0 && z.sup() < 0.0, "p = {p}: {:?}", out.x1);
+    let p1 = q + ONE;
+    let e1 = (Real::apow(&x, &p1) + Real::apow(&z, &p1)) / (p1 * Interval::from_int(2))
+        + v * v / Interval::from_int(2);
+    assert!(half.subset(e1), "p = {p}, δ = {delta}: E = {e1:?} misses 1/2");
+    let inv = z * (ONE - x) - x;
+    assert!(ZERO.subset(inv), "p = {p}, δ = {delta}: z(1 − x) − x = {inv:?}");
+    let tight = if delta <= opts.start_delta { 1e-13 } else { 1e-9 };
+    assert!(e1.wid() < tight && inv.wid() < tight, "p = {p}, δ = {delta}: {e1:?} {inv:?}");
+}
+
+#[test]
+fn the_start_step_keeps_the_invariants_of_a_coupled_pair() {
+    for p in ["1.5", "1.27", "2.28", "3.14"] {
+        for delta in [1e-3, 5e-3, 2e-2] {
+            check_start_pair(p, delta);
+        }
+    }
+}
