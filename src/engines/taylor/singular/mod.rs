@@ -487,6 +487,10 @@ impl<const N: usize> Singular<N> {
     pub fn try_start<I: Enclosure>(&mut self, t0: f64, x0: &[I; N]) -> Option<StepOut<N, I>> {
         let x0 = (x0 as &dyn Any).downcast_ref::<[Interval; N]>()?;
         let (gens, m) = (self.st.basis.gens(), self.opts.start_max_exp);
+        // every power of exponent 1 (|x|⁰x = x, |x|¹ a kink): no branch point to expand at
+        if gens.is_empty() {
+            return None;
+        }
         let basis = self
             .start
             .get_or_insert_with(|| Basis::new(gens, m))

@@ -85,12 +85,18 @@ fn roles<const N: usize>(
         .copied()
         .find(|&j| rate_sign(j).is_some())?;
     let sigma = rate_sign(w)?;
-    let roles = std::array::from_fn(|j| match (j == w, rate_sign(j)) {
+    let roles: [Role; N] = std::array::from_fn(|j| match (j == w, rate_sign(j)) {
         (true, _) => Role::Var,
         (false, Some(s)) => Role::Factored(s),
         (false, None) => Role::Regular,
     });
-    Some((w, sigma, roles))
+    // only at a branch point (a power's operand at 0): at kinks alone (|·|, e.g. p = n = 1)
+    // the field continued from one side is analytic, and the Taylor steps' dense output is
+    // finer than this step's low-order piece
+    let branch = (0..N).any(|j| {
+        roles[j] != Role::Regular && tape.switching().contains(&j) && !tape.kinks().contains(&j)
+    });
+    branch.then_some((w, sigma, roles))
 }
 
 /// The start step's operator T (see the module's documentation) on y = (the unknown of each

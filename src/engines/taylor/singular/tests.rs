@@ -165,7 +165,11 @@ fn check_start(p: &str, delta: f64) -> [Interval; 3] {
     );
     // an enclosure, not everything: a few ulps of 1/2 at the default δ (the remainder grows
     // like δ^M beyond it)
-    let tight = if delta <= opts.start_delta { 1e-14 } else { 1e-10 };
+    let tight = if delta <= opts.start_delta {
+        1e-14
+    } else {
+        1e-10
+    };
     assert!(e1.wid() < tight, "p = {p}, δ = {delta}: {e1:?}");
     x1
 }
@@ -206,11 +210,24 @@ fn check_start_pair(p: &str, delta: f64) {
     let p1 = q + ONE;
     let e1 = (Real::apow(&x, &p1) + Real::apow(&z, &p1)) / (p1 * Interval::from_int(2))
         + v * v / Interval::from_int(2);
-    assert!(half.subset(e1), "p = {p}, δ = {delta}: E = {e1:?} misses 1/2");
+    assert!(
+        half.subset(e1),
+        "p = {p}, δ = {delta}: E = {e1:?} misses 1/2"
+    );
     let inv = z * (ONE - x) - x;
-    assert!(ZERO.subset(inv), "p = {p}, δ = {delta}: z(1 − x) − x = {inv:?}");
-    let tight = if delta <= opts.start_delta { 1e-13 } else { 1e-9 };
-    assert!(e1.wid() < tight && inv.wid() < tight, "p = {p}, δ = {delta}: {e1:?} {inv:?}");
+    assert!(
+        ZERO.subset(inv),
+        "p = {p}, δ = {delta}: z(1 − x) − x = {inv:?}"
+    );
+    let tight = if delta <= opts.start_delta {
+        1e-13
+    } else {
+        1e-9
+    };
+    assert!(
+        e1.wid() < tight && inv.wid() < tight,
+        "p = {p}, δ = {delta}: {e1:?} {inv:?}"
+    );
 }
 
 #[test]
