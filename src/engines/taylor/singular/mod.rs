@@ -30,6 +30,9 @@
 //!    bisection on its enclosure brackets the u* with t(u*) = t₁, and the state there is
 //!    y([u_lo, u_hi]).
 //!
+//! At the start two components are at their branch points at once; [`start`] leaves it in one
+//! step with the second one factored as s·u·W.
+//!
 //! The step is given to the rest of the engine as a low-order piece x₀ + τ·f(Y) over [t₀, t₁]
 //! (Y the hull of both sides' ranges, which contains the whole path), so that the event scan
 //! and dense output need nothing new; the step is taken only when that piece clears the

@@ -43,7 +43,7 @@
 //! (Maxwell's p − 1), integrable on [0, δ]: Grönwall with that kernel makes them equal.
 //!
 //! **Exit.** At an exact double t₁ just below t(δ): bisection on t(u) brackets u* with
-//! t(u*) = t₁ ([`super::exit_parameter`]), and the state at t₁ is x_w = σu*,
+//! t(u*) = t₁ (`exit_parameter`, as for the crossings), and the state at t₁ is x_w = σu*,
 //! x_j = s_j·u*·W_j(u*) (intersected with the expanded s_j·u·W_j at u*), y_j(u*).
 
 use super::puiseux::{Basis, Ctx, Gts};
