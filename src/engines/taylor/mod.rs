@@ -75,6 +75,9 @@ pub struct TaylorOptions {
     /// crossing variable ([`singular`]) instead of geometrically shrinking Taylor steps and a
     /// low-order step; off: the latter only. Taken by the f64-interval engine (inari).
     pub singular: bool,
+    /// With `singular`: leave the start (two components at their branch points at once) by one
+    /// step in the expansions of [`singular::start`]; off: Taylor steps from a low-order step.
+    pub singular_start: bool,
     /// Stop with [`DEADLINE`] when a step starts after this instant (`None`: no limit): the
     /// time budget of a run, e.g. of each precision of the fallback
     /// ([`crate::observables::precision::decide`]).
@@ -102,6 +105,7 @@ impl Default for TaylorOptions {
             event_slack: 1e-3,
             qr: true,
             singular: true,
+            singular_start: true,
             deadline: None,
             event_forms: true,
         }
@@ -212,6 +216,9 @@ pub fn integrate_system<I: Enclosure, const N: usize>(
 /// Point sets (width ≲ 1e-12) keep the box re-wrap there: measured on the 28 Table 1 cases,
 /// keeping the parallelepiped changed their e widths by 0.77–1.25× (no gain on balance).
 const WIDE_SET: f64 = 1e-10;
+
+/// The widest state a start step may end in (else the Taylor steps leave the start).
+const START_WIDTH: f64 = 4e-15;
 
 /// A singular step is tried once a branch point is this near (the time for its component to
 /// reach 0 at its fastest).
@@ -329,7 +336,30 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 toward.then(|| (i, x[i].mig_f64() / f[i].mag_f64()))
             })
             .filter(|&(_, h)| h < SINGULAR_NEAR);
+        let first = flow.pieces.is_empty();
         let singular_out = match (near.next(), near.next()) {
+            // the start (the models start with two components at their branch points): one
+            // step in the expansions of [`singular::start`], taken when it adds little width
+            _ if first && w <= WIDE_SET && opts.singular && opts.singular_start => sing
+                .get_or_insert_with(|| singular::Singular::new(tape))
+                .as_mut()
+                .and_then(|s| s.try_start(t, &x))
+                .filter(|o| {
+                    let ok = width(&o.x1) <= START_WIDTH
+                        && matches!(
+                            event::scan_piece(tape, &mut ev_ws, &o.piece, opts.event_forms),
+                            event::Verdict::Cleared
+                        );
+                    if trace {
+                        eprintln!(
+                            "  start step to t={:.6e}: width {:.1e}, {}",
+                            o.piece.t1(),
+                            width(&o.x1),
+                            if ok { "taken" } else { "refused" }
+                        );
+                    }
+                    ok
+                }),
             (Some((i, h)), None) if w <= WIDE_SET && opts.singular => sing
                 .get_or_insert_with(|| singular::Singular::new(tape))
                 .as_mut()

@@ -30,12 +30,16 @@
 //!    bisection on its enclosure brackets the u* with t(u*) = t₁, and the state there is
 //!    y([u_lo, u_hi]).
 //!
+//! At the start two components are at their branch points at once; [`start`] leaves it in one
+//! step with the second one factored as s·u·W.
+//!
 //! The step is given to the rest of the engine as a low-order piece x₀ + τ·f(Y) over [t₀, t₁]
 //! (Y the hull of both sides' ranges, which contains the whole path), so that the event scan
 //! and dense output need nothing new; the step is taken only when that piece clears the
 //! separation condition.
 
 pub mod puiseux;
+pub mod start;
 
 use super::flow::{point, tau};
 use super::lohner::Parallelepiped;
@@ -62,17 +66,31 @@ pub struct SingularOptions {
     pub iterations: usize,
     /// Picard images taken after the validation (each sheds most of the candidate's inflation).
     pub tighten: usize,
+    /// Exponent cut-off of the start step's expansions ([`start`]).
+    pub start_max_exp: f64,
+    /// How far the start step goes in its variable u = |x_w| ([`start`]).
+    pub start_delta: f64,
 }
 
 /// Measured on SHC DSS, v0 = 1 (30 runs, one thread, 2026-11-23): M = 6 with 3
 /// iterations and one tightening image took 17.5 ms per CoR (M = 5: 19.9 ms, M = 8: 27.7 ms),
 /// e 1.83e-13 wide.
+///
+/// The start step (measured on the 28 Table 1 cases, `cargo run --release --example
+/// singular`, 3 interleaved repetitions, 2026-11-25): δ = 5e-3 with M = 6 took a median 0.942
+/// of the time without it (pieces −17 … −24 per case, SHC DSS v0 = 1: 134 → 112); δ = 1e-2,
+/// M = 8: 1.001; δ = 2e-2, M = 8: 0.993 (−27 pieces, refused on SHC DSA v0 = 5); δ = 3e-2,
+/// M = 10: 1.143. At M = 6 the state's width after the step is 3.3e-16 at δ = 2e-3, 1.0e-15
+/// at 5e-3, 4.4e-14 at 1e-2 (the remainder ∝ δ^M); the start step costs ≈ 1 ms at M = 6
+/// (7 evaluations of the field on generalized polynomials), ≈ 12 Taylor pieces.
 impl Default for SingularOptions {
     fn default() -> Self {
         Self {
             max_exp: 6.0,
             iterations: 3,
             tighten: 1,
+            start_max_exp: 6.0,
+            start_delta: 5e-3,
         }
     }
 }
@@ -179,27 +197,60 @@ fn solve_side<const N: usize>(
     let c: Vec<Interval> = match &start {
         Start::At(y0, _) | Start::Zero(y0) => y0.to_vec(),
     };
-    let mut y: Vec<Gts> = c.iter().map(|&ci| Gts::constant_in(ctx, ci)).collect();
+    let y: Vec<Gts> = c.iter().map(|&ci| Gts::constant_in(ctx, ci)).collect();
+    let y = validate(y, w, opts, false, |y| picard(st, ctx, sigma, w, y, &start))?;
+    Some(Side { y })
+}
+
+/// A validated fixed point of the Picard-type operator `op`: `iterations` plain images of `y`,
+/// then candidates S (the last image inflated) until T(S) ⊆ S coefficientwise in every
+/// component but `skip`, then `tighten` more images. The solution is in T(S) and in each
+/// further image (the fixed-point argument of the caller's operator); `None` when no candidate
+/// validates in 8 tries.
+///
+/// With `keep_constants`, a constant coefficient that the last iteration left unchanged is not
+/// widened in the candidate (the start's x_j(0), and W_j(0) computed from them: T gives them
+/// again, while widening them widens their images by the dependency of interval arithmetic,
+/// e.g. V/V — measured at the start, SHC DSS: 6 failed candidates before, 2 after).
+fn validate(
+    mut y: Vec<Gts>,
+    skip: usize,
+    opts: &SingularOptions,
+    keep_constants: bool,
+    op: impl Fn(&[Gts]) -> Option<Vec<Gts>>,
+) -> Option<Vec<Gts>> {
+    let mut same_c0 = vec![false; y.len()];
     for _ in 0..opts.iterations {
-        y = picard(st, ctx, sigma, w, &y, &start)?;
+        let y1 = op(&y)?;
+        for (j, (a, b)) in y1.iter().zip(&y).enumerate() {
+            same_c0[j] = keep_constants && a.c0() == b.c0();
+        }
+        y = y1;
     }
     // T(S) ⊆ S for an inflated candidate S
-    let mut s: Vec<Gts> = y.iter().map(|g| g.inflate(0.5, 1e-15, 1e-300)).collect();
+    let mut s: Vec<Gts> = y
+        .iter()
+        .zip(&same_c0)
+        .map(|(g, &same)| {
+            let s = g.inflate(0.5, 1e-15, 1e-300);
+            if same { s.with_constant(g.c0()) } else { s }
+        })
+        .collect();
     for _ in 0..8 {
-        let ts = picard(st, ctx, sigma, w, &s, &start)?;
+        let ts = op(&s)?;
         if ts
             .iter()
             .zip(&s)
             .enumerate()
-            .all(|(j, (a, b))| j == w || a.subset_of(b))
+            .all(|(j, (a, b))| j == skip || a.subset_of(b))
         {
             // T(S) ⊆ S: the solution is in T(S), and in every further image (T contracts by
             // about δ·Lip: each image sheds most of the candidate's inflation)
             let mut y = ts;
             for _ in 0..opts.tighten {
-                y = picard(st, ctx, sigma, w, &y, &start)?;
+                y = op(&y)?;
             }
-            return Some(Side { y });
+            return Some(y);
         }
         s = ts
             .iter()
@@ -259,32 +310,7 @@ fn cross_point<const N: usize>(
     if !(t1 > yc[N].sup() && t1 > t0 && t1 < t_end) {
         return None;
     }
-    // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi
-    let (mut lo, mut hi) = (0.0_f64, delta_b);
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if tb.eval(point(m)).sup() < t1 {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
-    let (mut lo2, mut hi2) = (lo, delta_b);
-    for _ in 0..200 {
-        let m = 0.5 * (lo2 + hi2);
-        if m <= lo2 || m >= hi2 {
-            break;
-        }
-        if tb.eval(point(m)).inf() > t1 {
-            hi2 = m;
-        } else {
-            lo2 = m;
-        }
-    }
-    let ustar = Interval::try_from((lo, hi2)).ok()?;
+    let ustar = exit_parameter(tb, t1, delta_b)?;
     let x1: [Interval; N] = std::array::from_fn(|j| {
         if j == w {
             if sb > 0 { ustar } else { -ustar }
@@ -307,6 +333,38 @@ fn cross_point<const N: usize>(
         );
     }
     Some((t1, x1))
+}
+
+/// The parameters u ∈ [0, δ] where the increasing time t(u) (enclosed by `t`) can equal the
+/// exact double `t1`: bisection from below to the last u with t(u) < t1 surely, and from above
+/// to the first u with t(u) > t1 surely.
+fn exit_parameter(t: &Gts, t1: f64, delta: f64) -> Option<Interval> {
+    // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi
+    let (mut lo, mut hi) = (0.0_f64, delta);
+    for _ in 0..200 {
+        let m = 0.5 * (lo + hi);
+        if m <= lo || m >= hi {
+            break;
+        }
+        if t.eval(point(m)).sup() < t1 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    let (mut lo2, mut hi2) = (lo, delta);
+    for _ in 0..200 {
+        let m = 0.5 * (lo2 + hi2);
+        if m <= lo2 || m >= hi2 {
+            break;
+        }
+        if t.eval(point(m)).inf() > t1 {
+            hi2 = m;
+        } else {
+            lo2 = m;
+        }
+    }
+    Interval::try_from((lo, hi2)).ok()
 }
 
 /// A step across the zero of component `w` from the set at t0 (the parallelepiped `rep`, or
@@ -409,6 +467,9 @@ pub struct Singular<const N: usize> {
     opts: SingularOptions,
     /// After a refused step the next try waits until the surface is this near.
     retry: f64,
+    /// The start step's basis (its own cut-off), made when first tried; `None` inside when
+    /// it cannot be made.
+    start: Option<Option<Arc<Basis>>>,
 }
 
 impl<const N: usize> Singular<N> {
@@ -421,7 +482,43 @@ impl<const N: usize> Singular<N> {
             tape: tape.clone(),
             opts,
             retry: f64::INFINITY,
+            start: None,
         })
+    }
+
+    /// [`start::start_step`] from the point `x0` at `t0`, or `None`.
+    pub fn try_start<I: Enclosure>(&mut self, t0: f64, x0: &[I; N]) -> Option<StepOut<N, I>> {
+        let x0 = (x0 as &dyn Any).downcast_ref::<[Interval; N]>()?;
+        let (gens, m) = (self.st.basis.gens(), self.opts.start_max_exp);
+        // every power of exponent 1 (|x|⁰x = x, |x|¹ a kink): no branch point to expand at
+        if gens.is_empty() {
+            return None;
+        }
+        let basis = self
+            .start
+            .get_or_insert_with(|| Basis::new(gens, m))
+            .clone()?;
+        let clock = std::time::Instant::now();
+        let out = start::start_step(
+            &self.st.tape,
+            &basis,
+            &self.tape,
+            t0,
+            x0,
+            self.opts.start_delta,
+            &self.opts,
+        );
+        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+            eprintln!(
+                "start attempt at t0 {t0}: {} in {:?} ({} exponents up to {})",
+                if out.is_some() { "proved" } else { "refused" },
+                clock.elapsed(),
+                basis.len(),
+                self.opts.start_max_exp
+            );
+        }
+        let b: Box<dyn Any> = Box::new(out?);
+        b.downcast::<StepOut<N, I>>().ok().map(|b| *b)
     }
 
     /// [`crossing_step`] across component `w`, `h` the time it needs to reach 0 at its

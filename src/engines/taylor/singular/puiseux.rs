@@ -158,6 +158,11 @@ impl Basis {
         self.keys.binary_search(&k).map_or(BEYOND, |i| i as u16)
     }
 
+    /// The generators other than g₀ = 1.
+    pub fn gens(&self) -> &[Interval] {
+        &self.gens[1..]
+    }
+
     /// How many exponents the basis has.
     pub fn len(&self) -> usize {
         self.keys.len()
@@ -234,6 +239,11 @@ pub struct Gts {
     rem: Interval,
     /// ±1 when the value is exactly ±u (the independent variable), else 0.
     var: i8,
+    /// (s, W) when the value is exactly s·u·W(u) with s = ±1 and W a value of one sign > 0
+    /// (a component that starts at 0 with the independent variable, see [`Gts::factored`]);
+    /// the terms and remainder above are the expanded product, used by every operation
+    /// except the powers and |·|.
+    fac: Option<Arc<(i8, Gts)>>,
 }
 
 impl Gts {
@@ -243,6 +253,7 @@ impl Gts {
             terms: vec![(0, c)],
             rem: ZERO,
             var: 0,
+            fac: None,
         }
     }
 
@@ -253,7 +264,25 @@ impl Gts {
             terms: vec![(ctx.basis.gen_index(0), Real::from_int(sign as i64))],
             rem: ZERO,
             var: sign,
+            fac: None,
         }
+    }
+
+    /// s·u·W on the context's domain, s = ±1, for a component that starts at 0 together with
+    /// the independent variable ([`super::start`]). Its powers are taken in the factored form
+    ///
+    /// ```text
+    /// |s·u·W|^q = u^q·W^q,     |s·u·W|^(q−1)·(s·u·W) = s·u^q·W^q       (W > 0),
+    /// ```
+    ///
+    /// the monomial of the generator q times the binomial series of W^q about W's constant
+    /// coefficient, and |s·u·W| = u·W: exact on every function of the set as long as every
+    /// function of W's set is > 0, which the powers and |·| check (otherwise they are
+    /// unbounded). Every other operation uses the expanded product s·u·W.
+    pub fn factored(ctx: &Arc<Ctx>, s: i8, w: Gts) -> Self {
+        let mut g = Self::variable(ctx, s) * w.clone();
+        g.fac = Some(Arc::new((s, w)));
+        g
     }
 
     /// The constant `c` in the context (so that its range is defined).
@@ -347,6 +376,26 @@ impl Gts {
             terms,
             rem,
             var: 0,
+            fac: None,
+        }
+    }
+
+    /// The mean A(y)(u) = (1/u)∫₀^u y(s) ds (A(y)(0) = y(0)): c·u^α ↦ c·u^α/(α + 1), and the
+    /// remainder R stays R — the mean over [0, u] of a function with values in the interval R
+    /// lies in R. Exponents do not change, so nothing moves beyond the cut-off.
+    pub fn average(&self) -> Self {
+        let ctx = self.ctx.as_ref().expect("a mean needs a domain");
+        let terms = self
+            .terms
+            .iter()
+            .map(|(i, c)| (*i, *c / (ctx.basis.exps[*i as usize] + ONE)))
+            .collect();
+        Self {
+            ctx: self.ctx.clone(),
+            terms,
+            rem: self.rem,
+            var: 0,
+            fac: None,
         }
     }
 
@@ -381,7 +430,19 @@ impl Gts {
                 .collect(),
             rem: inf(self.rem, abs_r),
             var: 0,
+            fac: None,
         }
+    }
+
+    /// The same value with the constant coefficient c.
+    pub fn with_constant(mut self, c: Interval) -> Self {
+        match self.terms.first_mut() {
+            Some((0, x)) => *x = c,
+            _ => self.terms.insert(0, (0, c)),
+        }
+        self.var = 0;
+        self.fac = None;
+        self
     }
 
     /// Every coefficient and the remainder are bounded.
@@ -451,6 +512,7 @@ impl Gts {
             terms: self.terms.iter().map(|(i, x)| (*i, *x * c)).collect(),
             rem: self.rem * c,
             var: 0,
+            fac: None,
         }
     }
 
@@ -461,6 +523,7 @@ impl Gts {
             _ => self.terms.insert(0, (0, c)),
         }
         self.var = 0;
+        self.fac = None;
         self
     }
 
@@ -480,7 +543,29 @@ impl Gts {
         if self.var != 0 {
             return Some(self.var);
         }
+        if let Some((s, _)) = self.positive_factor() {
+            return Some(s);
+        }
         Real::sign(&self.range())
+    }
+
+    /// (s, W) of a value s·u·W ([`Gts::factored`]) whose W is > 0 on the whole domain.
+    fn positive_factor(&self) -> Option<(i8, &Gts)> {
+        let f = self.fac.as_deref()?;
+        (f.1.range().inf() > 0.0).then_some((f.0, &f.1))
+    }
+
+    /// s·u^q·W^q (`signed`) or u^q·W^q for the value s·u·W ([`Gts::factored`]).
+    fn factored_pow(&self, s: i8, w: &Gts, q: &Self, signed: bool) -> Self {
+        if !q.is_const() {
+            return Self::unbounded();
+        }
+        let c = if signed {
+            Real::from_int(s as i64)
+        } else {
+            ONE
+        };
+        self.monomial_of(q, c) * w.analytic_pow(q.c0())
     }
 
     /// u^(g_j)·c for the generator of the constant exponent `q`.
@@ -500,12 +585,14 @@ impl Gts {
                 ctx: Some(ctx),
                 terms: Vec::new(),
                 var: 0,
+                fac: None,
             },
             i => Self {
                 ctx: Some(ctx),
                 terms: vec![(i, c)],
                 rem: ZERO,
                 var: 0,
+                fac: None,
             },
         }
     }
@@ -544,6 +631,7 @@ impl Add for Gts {
             terms,
             rem: self.rem + o.rem,
             var: 0,
+            fac: None,
         }
     }
 }
@@ -556,6 +644,7 @@ impl Neg for Gts {
             terms: self.terms.into_iter().map(|(k, c)| (k, -c)).collect(),
             rem: -self.rem,
             var: -self.var,
+            fac: self.fac.map(|f| Arc::new((-f.0, f.1.clone()))),
         }
     }
 }
@@ -619,6 +708,7 @@ impl Mul for Gts {
             terms,
             rem,
             var: 0,
+            fac: None,
         }
     }
 }
@@ -653,9 +743,13 @@ impl Real for Gts {
             terms: Vec::new(),
             rem: Interval::ENTIRE,
             var: 0,
+            fac: None,
         }
     }
     fn abs(&self) -> Self {
+        if let (Some((_, w)), Some(ctx)) = (self.positive_factor(), &self.ctx) {
+            return Self::factored(ctx, 1, w.clone());
+        }
         match self.certain_sign() {
             Some(s) if self.var != 0 => self.clone() * Self::from_int(s as i64),
             Some(s) if s > 0 => self.clone(),
@@ -700,6 +794,9 @@ impl Real for Gts {
         if self.var != 0 {
             return self.monomial_of(q, Real::from_int(self.var as i64));
         }
+        if let Some((s, w)) = self.positive_factor() {
+            return self.factored_pow(s, w, q, true);
+        }
         match self.certain_sign() {
             Some(1) if q.is_const() => self.analytic_pow(q.c0()),
             Some(-1) if q.is_const() => -((-self.clone()).analytic_pow(q.c0())),
@@ -716,6 +813,9 @@ impl Real for Gts {
         }
         if self.var != 0 {
             return self.monomial_of(q, ONE);
+        }
+        if let Some((s, w)) = self.positive_factor() {
+            return self.factored_pow(s, w, q, false);
         }
         match self.certain_sign() {
             Some(1) if q.is_const() => self.analytic_pow(q.c0()),
