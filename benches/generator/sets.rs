@@ -72,6 +72,13 @@ fn ratio(
     Ok((r.e.wid() / spread(&e), r.ts.wid() / spread(&t), ms))
 }
 
+/// The load averages (1, 5, 15 min) of the machine.
+fn loadavg() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let thickness: f64 = args
@@ -83,6 +90,7 @@ fn main() {
     let no_band = args.iter().any(|a| a == "--no-band");
     let mut md = String::new();
     let t_all = Instant::now();
+    let load_start = loadavg();
     writeln!(md, "{BEGIN}").unwrap();
     writeln!(md, "## Sets of parameters (issue #13)\n").unwrap();
     writeln!(
@@ -285,7 +293,14 @@ fn main() {
         )
         .unwrap();
     }
-    writeln!(md, "\nTotal {:.0} s.", t_all.elapsed().as_secs_f64()).unwrap();
+    // (the band's times are wall times: a busy machine stretches them)
+    let load = loadavg();
+    writeln!(
+        md,
+        "\nTotal {:.0} s; load average at the start {load_start}, at the end {load} (2 CPUs).",
+        t_all.elapsed().as_secs_f64()
+    )
+    .unwrap();
     writeln!(md, "{END}").unwrap();
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/RESULTS.md");
     let old = std::fs::read_to_string(path).unwrap_or_default();
