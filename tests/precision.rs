@@ -108,7 +108,7 @@ fn precise_enclosures_contain_the_references_and_the_f64_ones_their_midpoints() 
 #[ignore]
 fn digits_floors() {
     for &(kind, base, v0) in CASES {
-        for digits in [20, 30] {
+        for digits in [20, 30, 40] {
             let t0 = std::time::Instant::now();
             let p = ParamText::Base {
                 base: base.into(),
@@ -126,5 +126,52 @@ fn digits_floors() {
                 ),
             }
         }
+    }
+}
+
+/// 30 digits on the four Table 1 sets at v0 = 1 (the singular step on MPFR intervals across
+/// the branch points and kinks): each enclosure ≤ 1e-30 wide; the 36-digit references inside
+/// where the file has them, else the 40-digit enclosure inside the 30-digit one (both proved
+/// independently: the narrower must lie in the wider); the f64 enclosures contain the midpoint.
+#[test]
+fn thirty_digits_on_the_four_table1_sets() {
+    use bwcl::models::params::TABLE1;
+    for (name, kind, base) in TABLE1 {
+        let t0 = std::time::Instant::now();
+        let r = precise(kind, base, "1", 30);
+        let (wts, we) = (r.width_ts().to_f64(), r.width_e().to_f64());
+        eprintln!(
+            "{name}: 30 digits, {} bits, width ts {wts:e}, e {we:e}, {} pieces, {:?}",
+            r.bits,
+            r.pieces,
+            t0.elapsed()
+        );
+        assert!(wts <= 1e-30 && we <= 1e-30, "{name}: {wts:e} {we:e}");
+        if CASES.iter().any(|&(k, b, _)| k == kind && b == base) {
+            let (ts, e) = reference(kind, base, "1");
+            assert!(
+                inside(&ts, &r.ts),
+                "{name}: T_s reference outside {:?}",
+                r.ts
+            );
+            assert!(inside(&e, &r.e), "{name}: e reference outside {:?}", r.e);
+        } else {
+            let r40 = precise(kind, base, "1", 40);
+            let sub = |a: &[Rational; 2], b: &[Rational; 2]| a[0] >= b[0] && a[1] <= b[1];
+            assert!(sub(&r40.ts, &r.ts), "{name}: T_s {:?} ⊄ {:?}", r40.ts, r.ts);
+            assert!(sub(&r40.e, &r.e), "{name}: e {:?} ⊄ {:?}", r40.e, r.e);
+            assert!(
+                r40.width_e() < r.width_e(),
+                "{name}: 40 digits not narrower"
+            );
+        }
+        let (fts, fe) = f64_enclosure(kind, base, "1");
+        let mid = |x: &[Rational; 2]| Rational::from(&x[0] + &x[1]) / 2u32;
+        assert!(
+            contains(fts, &mid(&r.ts)),
+            "{name}: {fts:?} ∌ mid {:?}",
+            r.ts
+        );
+        assert!(contains(fe, &mid(&r.e)), "{name}: {fe:?} ∌ mid {:?}", r.e);
     }
 }

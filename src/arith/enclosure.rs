@@ -69,6 +69,40 @@ pub trait Enclosure: Real {
     }
     /// x^n for x ≥ 0.
     fn powi_nonneg(&self, n: u32) -> Self;
+    /// e^x.
+    fn exp(&self) -> Self;
+    /// x^k for any sign of x: [a, b]^k from the powers of the ends' magnitudes (k even: from 0
+    /// when the interval holds 0).
+    fn powi_signed(&self, k: u32) -> Self {
+        if self.is_empty() {
+            return Self::empty();
+        }
+        let (a, b) = (self.inf_point(), self.sup_point());
+        let odd = k % 2 == 1;
+        if a.lo() >= 0.0 {
+            return self.powi_nonneg(k);
+        }
+        // the negative end's power: (−a)^k with a < 0, negated for odd k
+        let pa = (-a).powi_nonneg(k);
+        let pa = if odd { -pa } else { pa };
+        if b.hi() <= 0.0 {
+            let pb = (-b).powi_nonneg(k);
+            let pb = if odd { -pb } else { pb };
+            return pa.hull(&pb);
+        }
+        let pb = b.powi_nonneg(k);
+        let r = pa.hull(&pb);
+        if odd { r } else { r.hull(&Self::zero()) }
+    }
+    /// [inf − r, sup + r] with r = rel·width + abs: a larger set (a candidate of a fixed-point
+    /// iteration, whose own inclusion test decides; not an enclosure of a result).
+    fn widen(&self, rel: f64, abs: f64) -> Self {
+        let r = rel * self.wid_f64() + abs;
+        match Self::from_bounds(-r, r) {
+            Some(b) if !self.is_empty() => self.clone() + b,
+            _ => Self::entire(),
+        }
+    }
     /// Σ aⱼ·bⱼ, one enclosure of the exact sum (the type's [`Dot`] accumulator).
     fn dot(terms: impl IntoIterator<Item = (Self, Self)>) -> Self {
         let mut d = <Self::Dot as Dot<Self>>::new();

@@ -21,9 +21,13 @@
 //! - event_slack, horizon, max_width as given; max_steps ×10.
 //!
 //! **Limit of the f64 step times.** The times of step boundaries are doubles, so a low-order
-//! step across a branch point away from T = 0 is at least an ulp of T long (≈ 2–4·10⁻¹⁶ at
-//! T ≈ 1–3) and adds at least ≈ that squared to the width: about 10⁻³¹. 30 digits are within
-//! reach; 60 are not without the singular expansions at the branch points (issue #15, 1).
+//! step across a branch point or a kink away from T = 0 is at least an ulp of T long
+//! (≈ 2–4·10⁻¹⁶ at T ≈ 1–3) and adds at least ≈ that squared to the width: about 10⁻³¹.
+//! Beyond f64 the engine therefore crosses the branch points, the kinks and the start by the
+//! singular step on MPFR intervals ([`crate::engines::taylor::singular`], tunables
+//! `SingularOptions::at_precision`: M = 7, trigger distance tol^(1/M)): measured 30 digits in
+//! ≈ 1–1.5 s and 40 in ≈ 3 s on the four Table 1 sets at v0 = 1; at 60 the Taylor steps
+//! leaving the start fail ≈ 2·10⁻⁶ from it (not yet understood).
 
 use crate::arith::mpfr::Mpi;
 use crate::engines::taylor::{RigorError, TaylorOptions, integrate_to_separation};

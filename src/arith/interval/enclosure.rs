@@ -70,6 +70,19 @@ impl Enclosure for Interval {
         Interval::try_from((m, m)).unwrap_or(Interval::ENTIRE)
     }
     #[inline]
+    fn exp(&self) -> Self {
+        Interval::exp(*self)
+    }
+    /// inari's `powi`.
+    fn powi_signed(&self, k: u32) -> Self {
+        Interval::powi(*self, k as i32)
+    }
+    /// The ends moved by r in round-to-nearest (a candidate set: any widening will do).
+    fn widen(&self, rel: f64, abs: f64) -> Self {
+        let r = rel * self.wid() + abs;
+        Interval::try_from((self.inf() - r, self.sup() + r)).unwrap_or(Interval::ENTIRE)
+    }
+    #[inline]
     fn epsilon() -> f64 {
         f64::EPSILON
     }

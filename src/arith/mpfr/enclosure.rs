@@ -64,6 +64,9 @@ impl<const B: u32> Enclosure for Mpi<B> {
     fn sup_point(&self) -> Self {
         Mpi::point(self.sup())
     }
+    fn exp(&self) -> Self {
+        Mpi::exp(self)
+    }
     fn epsilon() -> f64 {
         2f64.powi(1 - B as i32)
     }

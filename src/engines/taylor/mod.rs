@@ -217,12 +217,10 @@ pub fn integrate_system<I: Enclosure, const N: usize>(
 /// keeping the parallelepiped changed their e widths by 0.77–1.25× (no gain on balance).
 const WIDE_SET: f64 = 1e-10;
 
-/// The widest state a start step may end in (else the Taylor steps leave the start).
+/// The widest state a start step may end in (else the Taylor steps leave the start), at f64
+/// precision: ≈ 18 ulps of 1; at a precision of machine epsilon ε it scales by ε/2⁻⁵², and
+/// is at least `cross_tol`.
 const START_WIDTH: f64 = 4e-15;
-
-/// A singular step is tried once a branch point is this near (the time for its component to
-/// reach 0 at its fastest).
-const SINGULAR_NEAR: f64 = 2e-3;
 
 #[allow(clippy::type_complexity)]
 fn integrate_tape<I: Enclosure, const N: usize>(
@@ -255,7 +253,12 @@ fn integrate_tape<I: Enclosure, const N: usize>(
     // parallelepiped through the Taylor steps), set up the first time it is tried: its basis of
     // exponents is costly for the variational tapes of wide sets, which never use it (measured:
     // 55 % of a band piece's time, SHC DSS v0 ∈ [1, 1.0024], 1941 exponents)
-    let mut sing: Option<Option<singular::Singular<N>>> = None;
+    let mut sing: Option<Option<singular::Singular<N, I>>> = None;
+    let sing_opts = singular::SingularOptions::at_precision(I::epsilon(), opts.tol);
+    // widths that are a few ulps at f64 precision, scaled to the precision of `I` (exactly
+    // the f64 constants for f64 intervals)
+    let ulps = I::epsilon() / f64::EPSILON;
+    let start_width = (START_WIDTH * ulps).max(opts.cross_tol.min(START_WIDTH));
     let mut x = x0;
     // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
     let mut rep: Option<lohner::Parallelepiped<N, I>> = None;
@@ -329,13 +332,13 @@ fn integrate_tape<I: Enclosure, const N: usize>(
         // one branch point near and approached: across it in one singular step
         let mut near = switching
             .iter()
-            .filter(|i| !tape.kinks().contains(i))
+            .filter(|i| sing_opts.kinks || !tape.kinks().contains(i))
             .filter_map(|&i| {
                 let toward =
                     (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
                 toward.then(|| (i, x[i].mig_f64() / f[i].mag_f64()))
             })
-            .filter(|&(_, h)| h < SINGULAR_NEAR);
+            .filter(|&(_, h)| h < sing_opts.near);
         let first = flow.pieces.is_empty();
         let singular_out = match (near.next(), near.next()) {
             // the start (the models start with two components at their branch points): one
@@ -348,11 +351,11 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 && opts.singular_start
                 && x.iter().all(|c| c.wid_f64() <= WIDE_SET) =>
             {
-                sing.get_or_insert_with(|| singular::Singular::new(tape))
+                sing.get_or_insert_with(|| singular::Singular::new(tape, sing_opts.clone()))
                     .as_mut()
                     .and_then(|s| s.try_start(t, &x))
                     .filter(|o| {
-                        let ok = width(&o.x1) <= START_WIDTH
+                        let ok = width(&o.x1) <= start_width
                             && matches!(
                                 event::scan_piece(tape, &mut ev_ws, &o.piece, opts.event_forms),
                                 event::Verdict::Cleared
@@ -369,7 +372,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                     })
             }
             (Some((i, h)), None) if w <= WIDE_SET && opts.singular => sing
-                .get_or_insert_with(|| singular::Singular::new(tape))
+                .get_or_insert_with(|| singular::Singular::new(tape, sing_opts.clone()))
                 .as_mut()
                 .and_then(|s| {
                     let r = if opts.qr { rep.as_ref() } else { None };
@@ -377,7 +380,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                         // taken when it adds little width (the expansions' remainder grows like
                         // δ^M: too far from the surface the step is refused, and tried again
                         // nearer)
-                        let ok = width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15)
+                        let ok = width(&o.x1) <= 1.25 * w + opts.cross_tol.max(1e-15 * ulps)
                             && matches!(
                                 event::scan_piece(tape, &mut ev_ws, &o.piece, opts.event_forms),
                                 event::Verdict::Cleared

@@ -41,20 +41,19 @@
 pub mod puiseux;
 pub mod start;
 
-use super::flow::{point, tau};
+use super::flow::tau;
 use super::lohner::Parallelepiped;
 use super::step::{StepOut, low_order_step};
 use super::tape::Tape;
-use crate::arith::interval::dot::interval_dot;
 use crate::arith::jet::dual::Dual;
 use crate::arith::{Enclosure, Real};
-use inari::{Interval, const_interval};
-use puiseux::{Basis, Ctx, Gts};
-use std::any::Any;
+use puiseux::{Basis, Ctx, Gts, bounded};
 use std::sync::Arc;
 
-const ZERO: Interval = const_interval!(0.0, 0.0);
-const ONE: Interval = const_interval!(1.0, 1.0);
+/// The exact double x as a point of `I`.
+fn point<I: Enclosure>(x: f64) -> I {
+    I::from_exact_f64(x)
+}
 
 /// Tunables of the singular step.
 #[derive(Clone, Debug)]
@@ -70,6 +69,24 @@ pub struct SingularOptions {
     pub start_max_exp: f64,
     /// How far the start step goes in its variable u = |x_w| ([`start`]).
     pub start_delta: f64,
+    /// A crossing is tried once the branch point is this near (the time for its component to
+    /// reach 0 at its fastest): the domain δ of the expansions is about this times |ẇ|, their
+    /// remainder ∝ δ^M.
+    pub near: f64,
+    /// Also cross kinks (components inside |·| or sgn only) by the step: at f64 precision a
+    /// low-order step crosses them within the tolerance; beyond it the shortest such step (an
+    /// ulp of t) adds ≈ ulp(t)² > tol.
+    pub kinks: bool,
+    /// The departure side's domain is at least this long in u (a kink is usually approached
+    /// to within an ulp of t by a cut Taylor step: δ_A ≈ 1e-16, and t(δ_A) − t_c would hold
+    /// no double).
+    pub depart_min: f64,
+    /// Candidates tried before the validation gives up (each the last image's hull with the
+    /// candidate, inflated).
+    pub tries: usize,
+    /// The fixed-point candidates' coefficients are widened by this of their magnitude (a few
+    /// ulps of the coefficients' type).
+    pub inflate_rel: f64,
 }
 
 /// Measured on SHC DSS, v0 = 1 (30 runs, one thread, 2026-11-23): M = 6 with 3
@@ -91,26 +108,77 @@ impl Default for SingularOptions {
             tighten: 1,
             start_max_exp: 6.0,
             start_delta: 5e-3,
+            near: 2e-3,
+            inflate_rel: 1e-15,
+            tries: 8,
+            kinks: false,
+            depart_min: 0.0,
         }
     }
 }
 
-/// The tape over generalized polynomials and the exponents of its powers, made once per run.
-pub struct SingularTape<const N: usize> {
-    tape: Tape<Gts, N>,
-    basis: Arc<Basis>,
+impl SingularOptions {
+    /// The tunables for intervals whose ends have machine epsilon `eps`, the engine's
+    /// tolerance per step `tol`: the defaults at f64 precision (eps ≥ 2⁻⁵²); at higher
+    /// precision the remainder ∝ δ^M must fall below `tol` (see [`high_precision`]).
+    pub fn at_precision(eps: f64, tol: f64) -> Self {
+        if eps >= f64::EPSILON {
+            Self::default()
+        } else {
+            high_precision(eps, tol)
+        }
+    }
 }
 
-impl<const N: usize> SingularTape<N> {
+/// The cut-off M beyond f64 precision.
+const HIGH_PRECISION_M: f64 = 7.0;
+
+/// The tunables at a precision beyond f64 (machine epsilon `eps`, tolerance `tol` per step):
+/// M = 7 and the trigger distance near = tol^(1/M) (so that δ^M ≈ tol: the expansions'
+/// remainder is ∝ δ^M with δ ≈ |ẇ|·near), the start step on the same δ and M.
+///
+/// Measured on SHC DSS, v0 = 1, 30 digits (128 bits, tol 1e-33; one thread, load ≈ 3 on 2
+/// CPUs, 2026-11-25): near 1e-3 with M = 12 crossed Z = 0 in 3.7 s (262 exponents, 3 + 7
+/// iterations); near 3e-5, M = 9: 0.79 s; near 1e-5, M = 8: 0.39 s; near 1e-5, M = 7: 0.18 s,
+/// whole CoR 1.19 s, e 1.59e-32 wide (M = 9: 1.43e-32). A nearer trigger costs Taylor steps
+/// (287 pieces at 1e-5, 271 at 3e-5) but each of them much less than the larger basis.
+/// Iterations ⌈M/2⌉ + 1 before the validation: the coefficients of exponent up to ~M must have
+/// settled, or the candidates grow (measured on the Hertz pair, M = 12: 3 iterations left
+/// coefficients 1.5 wide, 6 settled them). Up to 24 candidates (8 were too few at 128 bits:
+/// the start validated at candidate 9–12); the inflation a few ulps of the precision.
+fn high_precision(eps: f64, tol: f64) -> SingularOptions {
+    let m = HIGH_PRECISION_M;
+    let near = tol.powf(1.0 / m).clamp(1e-8, 1e-3);
+    SingularOptions {
+        max_exp: m,
+        iterations: (m / 2.0).ceil() as usize + 1,
+        tighten: 2,
+        start_max_exp: m,
+        start_delta: near,
+        near,
+        tries: 24,
+        kinks: true,
+        depart_min: 1e-12,
+        inflate_rel: 1e-15 * (eps / f64::EPSILON),
+    }
+}
+
+/// The tape over generalized polynomials and the exponents of its powers, made once per run.
+pub struct SingularTape<const N: usize, I: Enclosure> {
+    tape: Tape<Gts<I>, N>,
+    basis: Arc<Basis<I>>,
+}
+
+impl<const N: usize, I: Enclosure> SingularTape<N, I> {
     /// `None` when the model has powers with a variable exponent (not expanded).
-    pub fn of(tape: &Tape<Interval, N>, opts: &SingularOptions) -> Option<Self> {
+    pub fn of(tape: &Tape<I, N>, opts: &SingularOptions) -> Option<Self> {
         if tape.has_variable_exponents() {
             return None;
         }
-        let gens: Vec<Interval> = tape
+        let gens: Vec<I> = tape
             .power_exponents()
             .into_iter()
-            .filter(|q| q.inf() > 0.0)
+            .filter(|q| q.lo() > 0.0)
             .collect();
         let basis = Basis::new(&gens, opts.max_exp)?;
         if std::env::var_os("BWCL_TRACE_SING").is_some() {
@@ -120,35 +188,35 @@ impl<const N: usize> SingularTape<N> {
             );
         }
         Some(Self {
-            tape: tape.map(|c| Gts::constant(*c)),
+            tape: tape.map(|c| Gts::constant(c.clone())),
             basis,
         })
     }
 }
 
 /// Where the fixed point's constant comes from.
-enum Start<'a> {
+enum Start<'a, I> {
     /// y(u₀) = y₀ for u₀ ∈ U₀ (the approach side).
-    At(&'a [Interval], Interval),
+    At(&'a [I], I),
     /// y(0) = y_c (the departure side).
-    Zero(&'a [Interval]),
+    Zero(&'a [I]),
 }
 
 /// y = (the components other than w, then t) as generalized polynomials on one side.
-struct Side {
-    y: Vec<Gts>,
+struct Side<I: Enclosure> {
+    y: Vec<Gts<I>>,
 }
 
 /// The Picard operator of one side: T(y) = c + I(y) (see the module's documentation).
-fn picard<const N: usize>(
-    st: &SingularTape<N>,
-    ctx: &Arc<Ctx>,
+fn picard<const N: usize, I: Enclosure>(
+    st: &SingularTape<N, I>,
+    ctx: &Arc<Ctx<I>>,
     sigma: i8,
     w: usize,
-    y: &[Gts],
-    start: &Start,
-) -> Option<Vec<Gts>> {
-    let x: [Gts; N] = std::array::from_fn(|j| {
+    y: &[Gts<I>],
+    start: &Start<I>,
+) -> Option<Vec<Gts<I>>> {
+    let x: [Gts<I>; N] = std::array::from_fn(|j| {
         if j == w {
             Gts::variable(ctx, sigma)
         } else {
@@ -163,7 +231,7 @@ fn picard<const N: usize>(
     let mut out = Vec::with_capacity(N + 1);
     for j in 0..=N {
         if j == w {
-            out.push(Gts::constant_in(ctx, ZERO));
+            out.push(Gts::constant_in(ctx, I::zero()));
             continue;
         }
         let g = if j == N {
@@ -173,8 +241,8 @@ fn picard<const N: usize>(
         };
         let i = g.integral();
         let c = match start {
-            Start::At(y0, u0) => y0[j] - i.eval(*u0),
-            Start::Zero(yc) => yc[j],
+            Start::At(y0, u0) => y0[j].clone() - i.eval(u0),
+            Start::Zero(yc) => yc[j].clone(),
         };
         let yj = Gts::constant_in(ctx, c) + i;
         if !yj.is_bounded() {
@@ -186,18 +254,21 @@ fn picard<const N: usize>(
 }
 
 /// The validated solution of one side, or `None`.
-fn solve_side<const N: usize>(
-    st: &SingularTape<N>,
-    ctx: &Arc<Ctx>,
+fn solve_side<const N: usize, I: Enclosure>(
+    st: &SingularTape<N, I>,
+    ctx: &Arc<Ctx<I>>,
     sigma: i8,
     w: usize,
-    start: Start,
+    start: Start<I>,
     opts: &SingularOptions,
-) -> Option<Side> {
-    let c: Vec<Interval> = match &start {
+) -> Option<Side<I>> {
+    let c: Vec<I> = match &start {
         Start::At(y0, _) | Start::Zero(y0) => y0.to_vec(),
     };
-    let y: Vec<Gts> = c.iter().map(|&ci| Gts::constant_in(ctx, ci)).collect();
+    let y: Vec<Gts<I>> = c
+        .iter()
+        .map(|ci| Gts::constant_in(ctx, ci.clone()))
+        .collect();
     let y = validate(y, w, opts, false, |y| picard(st, ctx, sigma, w, y, &start))?;
     Some(Side { y })
 }
@@ -212,32 +283,40 @@ fn solve_side<const N: usize>(
 /// widened in the candidate (the start's x_j(0), and W_j(0) computed from them: T gives them
 /// again, while widening them widens their images by the dependency of interval arithmetic,
 /// e.g. V/V — measured at the start, SHC DSS: 6 failed candidates before, 2 after).
-fn validate(
-    mut y: Vec<Gts>,
+fn validate<I: Enclosure>(
+    mut y: Vec<Gts<I>>,
     skip: usize,
     opts: &SingularOptions,
     keep_constants: bool,
-    op: impl Fn(&[Gts]) -> Option<Vec<Gts>>,
-) -> Option<Vec<Gts>> {
+    op: impl Fn(&[Gts<I>]) -> Option<Vec<Gts<I>>>,
+) -> Option<Vec<Gts<I>>> {
     let mut same_c0 = vec![false; y.len()];
-    for _ in 0..opts.iterations {
-        let y1 = op(&y)?;
+    for _it in 0..opts.iterations {
+        let y1 = op(&y);
+        if y1.is_none() && std::env::var_os("BWCL_TRACE_SING").is_some() {
+            eprintln!("validate: the image of iteration {_it} is unbounded");
+        }
+        let y1 = y1?;
         for (j, (a, b)) in y1.iter().zip(&y).enumerate() {
-            same_c0[j] = keep_constants && a.c0() == b.c0();
+            same_c0[j] = keep_constants && a.c0().same(&b.c0());
         }
         y = y1;
     }
     // T(S) ⊆ S for an inflated candidate S
-    let mut s: Vec<Gts> = y
+    let mut s: Vec<Gts<I>> = y
         .iter()
         .zip(&same_c0)
         .map(|(g, &same)| {
-            let s = g.inflate(0.5, 1e-15, 1e-300);
+            let s = g.inflate(0.5, opts.inflate_rel, 1e-300);
             if same { s.with_constant(g.c0()) } else { s }
         })
         .collect();
-    for _ in 0..8 {
-        let ts = op(&s)?;
+    for _try in 0..opts.tries {
+        let ts = op(&s);
+        if ts.is_none() && std::env::var_os("BWCL_TRACE_SING").is_some() {
+            eprintln!("validate: the image of candidate {_try} is unbounded");
+        }
+        let ts = ts?;
         if ts
             .iter()
             .zip(&s)
@@ -250,6 +329,9 @@ fn validate(
             for _ in 0..opts.tighten {
                 y = op(&y)?;
             }
+            if std::env::var_os("BWCL_TRACE_SING").is_some() {
+                eprintln!("validate: T(S) ⊆ S at candidate {_try}");
+            }
             return Some(y);
         }
         s = ts
@@ -258,7 +340,7 @@ fn validate(
             .map(|(a, b)| {
                 // the next candidate covers both (terms new in the image included)
                 let h = hull(a, b);
-                h.inflate(0.5, 1e-15, 1e-300)
+                h.inflate(0.5, opts.inflate_rel, 1e-300)
             })
             .collect();
     }
@@ -266,68 +348,82 @@ fn validate(
 }
 
 /// A value whose every coefficient and remainder contains both operands'.
-fn hull(a: &Gts, b: &Gts) -> Gts {
+fn hull<I: Enclosure>(a: &Gts<I>, b: &Gts<I>) -> Gts<I> {
     // a + (b − a)·0 keeps a's keys and b's; take coefficientwise hulls by adding the difference
     // of the two as an interval [0, 1] multiple: a + [0, 1](b − a) ⊇ a ∪ b coefficientwise
     let d = b.clone() - a.clone();
-    a.clone() + d * Gts::constant(const_interval!(0.0, 1.0))
+    a.clone() + d * Gts::constant(I::from_bounds(0.0, 1.0).expect("[0, 1]"))
 }
 
 /// The flow of the point `x0` (a box of tiny width) across the zero of component `w`: the
 /// exit time t₁ (`at`, or one chosen just before t(δ_B)) and the state there, or `None` (see
 /// [`crossing_step`]).
-fn cross_point<const N: usize>(
-    st: &SingularTape<N>,
-    tape: &Tape<Interval, N>,
+fn cross_point<const N: usize, I: Enclosure>(
+    st: &SingularTape<N, I>,
+    tape: &Tape<I, N>,
     t0: f64,
-    x0: &[Interval; N],
+    x0: &[I; N],
     w: usize,
     opts: &SingularOptions,
     at: Option<f64>,
-) -> Option<(f64, [Interval; N])> {
+) -> Option<(f64, [I; N])> {
     let sa = Real::sign(&x0[w])?;
     let f0 = tape.eval(x0);
     if Real::sign(&f0[w]) != Some(-sa) {
         return None;
     }
-    let u0 = if sa > 0 { x0[w] } else { -x0[w] };
-    let delta_a = u0.sup();
+    let u0 = if sa > 0 {
+        x0[w].clone()
+    } else {
+        -x0[w].clone()
+    };
+    let delta_a = u0.hi();
     let ctx_a = Ctx::new(&st.basis, delta_a)?;
-    let y0: Vec<Interval> = (0..=N)
-        .map(|j| if j == N { point(t0) } else { x0[j] })
+    let y0: Vec<I> = (0..=N)
+        .map(|j| if j == N { point(t0) } else { x0[j].clone() })
         .collect();
     let a = solve_side(st, &ctx_a, sa, w, Start::At(&y0, u0), opts)?;
-    let yc: Vec<Interval> = a.y.iter().map(|g| g.eval(ZERO)).collect();
+    let yc: Vec<I> = a.y.iter().map(|g| g.eval(&I::zero())).collect();
     let sb = -sa;
     // a given exit time may lie a little beyond this point's own t(δ_A)
-    let delta_b = if at.is_some() { 1.5 * delta_a } else { delta_a };
+    let delta_b = if at.is_some() {
+        1.5 * delta_a
+    } else {
+        delta_a.max(opts.depart_min)
+    };
     let ctx_b = Ctx::new(&st.basis, delta_b)?;
     let b = solve_side(st, &ctx_b, sb, w, Start::Zero(&yc), opts)?;
     // the exit time: t(δ_B) > t1 > t_c
     let tb = &b.y[N];
-    let t_end = tb.eval(point(delta_b)).inf();
+    let t_end = tb.eval(&point(delta_b)).lo();
     let t1 = at.unwrap_or(t_end.next_down());
-    if !(t1 > yc[N].sup() && t1 > t0 && t1 < t_end) {
+    if !(t1 > yc[N].hi() && t1 > t0 && t1 < t_end) {
         return None;
     }
+    let clock = std::time::Instant::now();
     let ustar = exit_parameter(tb, t1, delta_b)?;
-    let x1: [Interval; N] = std::array::from_fn(|j| {
+    let exit_time = clock.elapsed();
+    let x1: [I; N] = std::array::from_fn(|j| {
         if j == w {
-            if sb > 0 { ustar } else { -ustar }
+            if sb > 0 {
+                ustar.clone()
+            } else {
+                -ustar.clone()
+            }
         } else {
-            b.y[j].eval(ustar)
+            b.y[j].eval(&ustar)
         }
     });
     if std::env::var_os("BWCL_TRACE_SING").is_some() {
-        let rems = |s: &Side| {
+        let rems = |s: &Side<I>| {
             s.y.iter()
-                .map(|g| format!("{:.1e}/{}", g.remainder().wid(), g.terms().len()))
+                .map(|g| format!("{:.1e}/{}", g.remainder().wid_f64(), g.terms().len()))
                 .collect::<Vec<_>>()
                 .join(" ")
         };
         eprintln!(
-            "singular: t0 {t0} t1 {t1} δ {delta_a:.3e} u* width {:.1e}; remainders/terms A {} B {}",
-            ustar.wid(),
+            "singular: t0 {t0} t1 {t1} δ {delta_a:.3e} u* width {:.1e} (bisection {exit_time:?}); remainders/terms A {} B {}",
+            ustar.wid_f64(),
             rems(&a),
             rems(&b)
         );
@@ -337,34 +433,39 @@ fn cross_point<const N: usize>(
 
 /// The parameters u ∈ [0, δ] where the increasing time t(u) (enclosed by `t`) can equal the
 /// exact double `t1`: bisection from below to the last u with t(u) < t1 surely, and from above
-/// to the first u with t(u) > t1 surely.
-fn exit_parameter(t: &Gts, t1: f64, delta: f64) -> Option<Interval> {
+/// to the first u with t(u) > t1 surely. The midpoints are points of `I` (at MPFR precision the
+/// bracket shrinks to the precision of `I`, not to an f64 ulp), each comparison exact:
+/// t(u) − t1 < 0 (> 0) surely.
+pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> Option<I> {
+    // enough halvings to reach the ends' precision from δ (200 for f64 ends)
+    let iters = 200.max((-I::epsilon().log2()) as usize + 80);
+    let t1 = point::<I>(t1);
+    let below = |u: &I| (t.eval(u) - t1.clone()).hi() < 0.0;
+    let above = |u: &I| (t.eval(u) - t1.clone()).lo() > 0.0;
+    let mid = |a: &I, b: &I| -> Option<I> {
+        let m = a.hull(b).mid_point();
+        (!m.same(a) && !m.same(b)).then_some(m)
+    };
     // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi
-    let (mut lo, mut hi) = (0.0_f64, delta);
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if t.eval(point(m)).sup() < t1 {
+    let (mut lo, mut hi) = (I::zero(), point::<I>(delta));
+    for _ in 0..iters {
+        let Some(m) = mid(&lo, &hi) else { break };
+        if below(&m) {
             lo = m;
         } else {
             hi = m;
         }
     }
-    let (mut lo2, mut hi2) = (lo, delta);
-    for _ in 0..200 {
-        let m = 0.5 * (lo2 + hi2);
-        if m <= lo2 || m >= hi2 {
-            break;
-        }
-        if t.eval(point(m)).inf() > t1 {
+    let (mut lo2, mut hi2) = (lo.clone(), point::<I>(delta));
+    for _ in 0..iters {
+        let Some(m) = mid(&lo2, &hi2) else { break };
+        if above(&m) {
             hi2 = m;
         } else {
             lo2 = m;
         }
     }
-    Interval::try_from((lo, hi2)).ok()
+    ((hi2.clone() - lo.clone()).lo() >= 0.0).then(|| lo.hull(&hi2))
 }
 
 /// A step across the zero of component `w` from the set at t0 (the parallelepiped `rep`, or
@@ -381,20 +482,20 @@ fn exit_parameter(t: &Gts, t1: f64, delta: f64) -> Option<Interval> {
 /// inclusion holds for the Lipschitz fields of n = 1 too. The low-order step also gives the
 /// piece x₀ + τ·f(Y) that the event scan and the dense output use.
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-pub fn crossing_step<const N: usize>(
-    st: &SingularTape<N>,
-    tape: &Tape<Interval, N>,
-    dual: &Tape<Dual<Interval, N>, N>,
+pub fn crossing_step<const N: usize, I: Enclosure>(
+    st: &SingularTape<N, I>,
+    tape: &Tape<I, N>,
+    dual: &Tape<Dual<I, N>, N>,
     t0: f64,
-    x0: &[Interval; N],
-    rep: Option<&Parallelepiped<N>>,
+    x0: &[I; N],
+    rep: Option<&Parallelepiped<N, I>>,
     w: usize,
     opts: &SingularOptions,
-) -> Option<StepOut<N>> {
+) -> Option<StepOut<N, I>> {
     let clock = std::time::Instant::now();
     let trace = std::env::var_os("BWCL_TRACE_SING").is_some();
     let p = rep.cloned().unwrap_or_else(|| Parallelepiped::from_box(x0));
-    let c: [Interval; N] = p.c;
+    let c: [I; N] = p.c.clone();
     let cp = cross_point(st, tape, t0, &c, w, opts, None);
     if trace {
         eprintln!(
@@ -407,44 +508,51 @@ pub fn crossing_step<const N: usize>(
     let lo = low_order_step(tape, t0, x0, t1 - t0)?;
     let y = lo.apriori;
     let fd = dual.eval(&Dual::seed(&y));
-    let d: [[Interval; N]; N] = std::array::from_fn(|i| fd[i].d);
-    if !d.iter().flatten().all(|x| x.is_common_interval()) {
+    let d: [[I; N]; N] = std::array::from_fn(|i| fd[i].d.clone());
+    if !d.iter().flatten().all(bounded) {
         return None;
     }
-    let tau1 = tau(&point(t1), t0);
+    let tau1 = tau(&point::<I>(t1), t0);
     let norm = d
         .iter()
-        .map(|row| row.iter().fold(ZERO, |s, x| s + point(x.mag())))
-        .fold(ZERO, |m, s| point(m.sup().max(s.sup())));
-    let eps = ((norm * tau1).exp() - ONE).sup();
+        .map(|row| row.iter().fold(I::zero(), |s, x| s + point(x.mag_f64())))
+        .fold(I::zero(), |m, s| point(m.hi().max(s.hi())));
+    let eps = ((norm * tau1.clone()).exp() - I::one()).hi();
     if eps.is_nan() || eps >= 1.0 {
         return None;
     }
-    let ball = Interval::try_from((-eps, eps)).ok()?;
-    let jy: [[Interval; N]; N] =
-        std::array::from_fn(|i| std::array::from_fn(|j| if i == j { ONE + ball } else { ball }));
-    let mut jac = [[ZERO; N]; N];
-    for i in 0..N {
-        for j in 0..N {
-            let s = interval_dot((0..N).map(|l| (d[i][l], jy[l][j])));
-            jac[i][j] = if i == j { ONE } else { ZERO } + tau1 * s;
-        }
-    }
+    let ball = I::from_bounds(-eps, eps)?;
+    let jy: [[I; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            if i == j {
+                I::one() + ball.clone()
+            } else {
+                ball.clone()
+            }
+        })
+    });
+    let jac: [[I; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let s = I::dot((0..N).map(|l| (d[i][l].clone(), jy[l][j].clone())));
+            let e = if i == j { I::one() } else { I::zero() };
+            e + tau1.clone() * s
+        })
+    });
     // B = J·A
-    let b: [[Interval; N]; N] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| interval_dot((0..N).map(|l| (jac[i][l], point(p.a[l][j])))))
+    let b: [[I; N]; N] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| I::dot((0..N).map(|l| (jac[i][l].clone(), point(p.a[l][j])))))
     });
     let rep1 = Parallelepiped::advance(&z, &b, &p.r);
-    let x1: [Interval; N] = match &rep1 {
+    let x1: [I; N] = match &rep1 {
         Some(r) => {
             let h = r.hull();
-            std::array::from_fn(|i| h[i].intersection(lo.x1[i]))
+            std::array::from_fn(|i| h[i].intersection(&lo.x1[i]))
         }
         None => {
-            let off = std::array::from_fn::<Interval, N, _>(|i| {
-                interval_dot((0..N).map(|j| (b[i][j], p.r[j])))
+            let off = std::array::from_fn::<I, N, _>(|i| {
+                I::dot((0..N).map(|j| (b[i][j].clone(), p.r[j].clone())))
             });
-            std::array::from_fn(|i| (z[i] + off[i]).intersection(lo.x1[i]))
+            std::array::from_fn(|i| (z[i].clone() + off[i].clone()).intersection(&lo.x1[i]))
         }
     };
     if x1.iter().any(|c| c.is_empty()) {
@@ -458,27 +566,26 @@ pub fn crossing_step<const N: usize>(
     })
 }
 
-/// The singular step as the engine's loop uses it: made for the f64-interval engine (any other
-/// enclosure type gets `None` from [`Singular::new`]), with the retry rule after a refusal.
-pub struct Singular<const N: usize> {
-    st: SingularTape<N>,
-    tape: Tape<Interval, N>,
-    dual: Tape<Dual<Interval, N>, N>,
+/// The singular step as the engine's loop uses it, on the engine's interval type `I` (f64
+/// intervals or MPFR intervals: the expansions carry coefficients of the same precision), with
+/// the retry rule after a refusal.
+pub struct Singular<const N: usize, I: Enclosure> {
+    st: SingularTape<N, I>,
+    tape: Tape<I, N>,
+    dual: Tape<Dual<I, N>, N>,
     opts: SingularOptions,
     /// After a refused step the next try waits until the surface is this near.
     retry: f64,
     /// The start step's basis (its own cut-off), made when first tried; `None` inside when
     /// it cannot be made.
-    start: Option<Option<Arc<Basis>>>,
+    start: Option<Option<Arc<Basis<I>>>>,
 }
 
-impl<const N: usize> Singular<N> {
-    pub fn new<I: Enclosure>(tape: &Tape<I, N>) -> Option<Self> {
-        let tape = (tape as &dyn Any).downcast_ref::<Tape<Interval, N>>()?;
-        let opts = SingularOptions::default();
+impl<const N: usize, I: Enclosure> Singular<N, I> {
+    pub fn new(tape: &Tape<I, N>, opts: SingularOptions) -> Option<Self> {
         Some(Self {
             st: SingularTape::of(tape, &opts)?,
-            dual: tape.map(|c| Dual::constant(*c)),
+            dual: tape.map(|c| Dual::constant(c.clone())),
             tape: tape.clone(),
             opts,
             retry: f64::INFINITY,
@@ -487,8 +594,7 @@ impl<const N: usize> Singular<N> {
     }
 
     /// [`start::start_step`] from the point `x0` at `t0`, or `None`.
-    pub fn try_start<I: Enclosure>(&mut self, t0: f64, x0: &[I; N]) -> Option<StepOut<N, I>> {
-        let x0 = (x0 as &dyn Any).downcast_ref::<[Interval; N]>()?;
+    pub fn try_start(&mut self, t0: f64, x0: &[I; N]) -> Option<StepOut<N, I>> {
         let (gens, m) = (self.st.basis.gens(), self.opts.start_max_exp);
         // every power of exponent 1 (|x|⁰x = x, |x|¹ a kink): no branch point to expand at
         if gens.is_empty() {
@@ -517,13 +623,12 @@ impl<const N: usize> Singular<N> {
                 self.opts.start_max_exp
             );
         }
-        let b: Box<dyn Any> = Box::new(out?);
-        b.downcast::<StepOut<N, I>>().ok().map(|b| *b)
+        out
     }
 
     /// [`crossing_step`] across component `w`, `h` the time it needs to reach 0 at its
     /// fastest; `None` while a refused step waits to be nearer.
-    pub fn try_step<I: Enclosure>(
+    pub fn try_step(
         &mut self,
         t0: f64,
         x0: &[I; N],
@@ -534,17 +639,11 @@ impl<const N: usize> Singular<N> {
         if h >= self.retry {
             return None;
         }
-        let x0 = (x0 as &dyn Any).downcast_ref::<[Interval; N]>()?;
-        let rep = match rep {
-            Some(r) => Some((r as &dyn Any).downcast_ref::<Parallelepiped<N, Interval>>()?),
-            None => None,
-        };
         let out = crossing_step(&self.st, &self.tape, &self.dual, t0, x0, rep, w, &self.opts);
         if out.is_none() {
             self.retry = h / 4.0;
         }
-        let b: Box<dyn Any> = Box::new(out?);
-        b.downcast::<StepOut<N, I>>().ok().map(|b| *b)
+        out
     }
 
     /// Records whether the caller took the step (a refusal waits until 4× nearer).

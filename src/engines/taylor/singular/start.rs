@@ -46,16 +46,12 @@
 //! t(u*) = t₁ (`exit_parameter`, as for the crossings), and the state at t₁ is x_w = σu*,
 //! x_j = s_j·u*·W_j(u*) (intersected with the expanded s_j·u·W_j at u*), y_j(u*).
 
-use super::puiseux::{Basis, Ctx, Gts};
-use super::{SingularOptions, exit_parameter, validate};
-use crate::arith::Real;
-use crate::engines::taylor::flow::point;
+use super::puiseux::{Basis, Ctx, Gts, bounded};
+use super::{SingularOptions, exit_parameter, point, validate};
+use crate::arith::{Enclosure, Real};
 use crate::engines::taylor::step::{StepOut, low_order_step};
 use crate::engines::taylor::tape::Tape;
-use inari::{Interval, const_interval};
 use std::sync::Arc;
-
-const ZERO: Interval = const_interval!(0.0, 0.0);
 
 /// What each component is in the start step's variables.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,15 +66,15 @@ enum Role {
 
 /// The roles at the point `x0` (a box of exact points), or `None` when no switching component
 /// is at 0 with a certain nonzero rate: (the variable's index w, σ, the roles).
-fn roles<const N: usize>(
-    tape: &Tape<Interval, N>,
-    x0: &[Interval; N],
+fn roles<const N: usize, I: Enclosure>(
+    tape: &Tape<I, N>,
+    x0: &[I; N],
 ) -> Option<(usize, i8, [Role; N])> {
-    if x0.iter().any(|c| c.inf() != c.sup()) {
+    if x0.iter().any(|c| !c.same(&c.inf_point())) {
         return None;
     }
     let f0 = tape.eval(x0);
-    let rate_sign = |j: usize| (x0[j] == ZERO).then(|| Real::sign(&f0[j])).flatten();
+    let rate_sign = |j: usize| x0[j].same(&I::zero()).then(|| Real::sign(&f0[j])).flatten();
     let w = tape
         .switching()
         .iter()
@@ -102,17 +98,17 @@ fn roles<const N: usize>(
 /// The start step's operator T (see the module's documentation) on y = (the unknown of each
 /// component by its role, then t); the variable's own slot stays 0.
 #[allow(clippy::too_many_arguments)]
-fn picard<const N: usize>(
-    tape: &Tape<Gts, N>,
-    ctx: &Arc<Ctx>,
+fn picard<const N: usize, I: Enclosure>(
+    tape: &Tape<Gts<I>, N>,
+    ctx: &Arc<Ctx<I>>,
     w: usize,
     sigma: i8,
     roles: &[Role; N],
     t0: f64,
-    x0: &[Interval; N],
-    y: &[Gts],
-) -> Option<Vec<Gts>> {
-    let x: [Gts; N] = std::array::from_fn(|j| match roles[j] {
+    x0: &[I; N],
+    y: &[Gts<I>],
+) -> Option<Vec<Gts<I>>> {
+    let x: [Gts<I>; N] = std::array::from_fn(|j| match roles[j] {
         Role::Var => Gts::variable(ctx, sigma),
         Role::Factored(s) => Gts::factored(ctx, s, y[j].clone()),
         Role::Regular => y[j].clone(),
@@ -126,9 +122,9 @@ fn picard<const N: usize>(
     for j in 0..N {
         let g = || f[j].clone() * dt.clone();
         let yj = match roles[j] {
-            Role::Var => Gts::constant_in(ctx, ZERO),
+            Role::Var => Gts::constant_in(ctx, I::zero()),
             Role::Factored(s) => g().average() * Gts::from_int(s as i64),
-            Role::Regular => Gts::constant_in(ctx, x0[j]) + g().integral(),
+            Role::Regular => Gts::constant_in(ctx, x0[j].clone()) + g().integral(),
         };
         if !yj.is_bounded() {
             return None;
@@ -142,32 +138,32 @@ fn picard<const N: usize>(
 /// The flow of the point `x0` at `t0` (every component an exact double, two or more of them at
 /// their branch point) up to an exact time t₁ < t(δ): (t₁, the state there), or `None` when
 /// the expansions do not validate (see the module's documentation).
-pub fn start_point<const N: usize>(
-    gts_tape: &Tape<Gts, N>,
-    basis: &Arc<Basis>,
-    tape: &Tape<Interval, N>,
+pub fn start_point<const N: usize, I: Enclosure>(
+    gts_tape: &Tape<Gts<I>, N>,
+    basis: &Arc<Basis<I>>,
+    tape: &Tape<I, N>,
     t0: f64,
-    x0: &[Interval; N],
+    x0: &[I; N],
     delta: f64,
     opts: &SingularOptions,
-) -> Option<(f64, [Interval; N])> {
+) -> Option<(f64, [I; N])> {
     let (w, sigma, roles) = roles(tape, x0)?;
     let ctx = Ctx::new(basis, delta)?;
     let f0 = tape.eval(x0);
     // the constants: W_j(0) = |f_j/f_w|, x_j(0), t₀
-    let y0: Vec<Gts> = (0..=N)
+    let y0: Vec<Gts<I>> = (0..=N)
         .map(|j| {
             let c = if j == N {
                 point(t0)
             } else {
                 match roles[j] {
-                    Role::Var => ZERO,
+                    Role::Var => I::zero(),
                     Role::Factored(s) => {
-                        f0[j] / f0[w]
-                            * <Interval as Real>::from_int(s as i64)
-                            * <Interval as Real>::from_int(sigma as i64)
+                        f0[j].clone() / f0[w].clone()
+                            * I::from_int(s as i64)
+                            * I::from_int(sigma as i64)
                     }
-                    Role::Regular => x0[j],
+                    Role::Regular => x0[j].clone(),
                 }
             };
             Gts::constant_in(&ctx, c)
@@ -175,37 +171,49 @@ pub fn start_point<const N: usize>(
         .collect();
     let y = validate(y0, w, opts, true, |y| {
         picard(gts_tape, &ctx, w, sigma, &roles, t0, x0, y)
-    })?;
+    });
+    let Some(y) = y else {
+        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+            eprintln!("start: the expansions do not validate");
+        }
+        return None;
+    };
     let t = &y[N];
-    let t_end = t.eval(point(delta)).inf();
+    let t_end = t.eval(&point(delta)).lo();
     let t1 = t_end.next_down();
     if t1.is_nan() || t1 <= t0 {
         return None;
     }
     let ustar = exit_parameter(t, t1, delta)?;
-    let mut x1 = [ZERO; N];
+    let mut x1: [I; N] = std::array::from_fn(|_| I::zero());
     for j in 0..N {
         x1[j] = match roles[j] {
-            Role::Var => ustar * <Interval as Real>::from_int(sigma as i64),
+            Role::Var => ustar.clone() * I::from_int(sigma as i64),
             Role::Factored(s) => {
-                let factored = ustar * y[j].eval(ustar) * <Interval as Real>::from_int(s as i64);
-                let expanded = Gts::factored(&ctx, s, y[j].clone()).eval(ustar);
-                factored.intersection(expanded)
+                let factored = ustar.clone() * y[j].eval(&ustar) * I::from_int(s as i64);
+                let expanded = Gts::factored(&ctx, s, y[j].clone()).eval(&ustar);
+                factored.intersection(&expanded)
             }
-            Role::Regular => y[j].eval(ustar),
+            Role::Regular => y[j].eval(&ustar),
         };
-        if !x1[j].is_common_interval() {
+        if !bounded(&x1[j]) {
             return None;
         }
     }
     if std::env::var_os("BWCL_TRACE_SING").is_some() {
         let rems: Vec<String> = y
             .iter()
-            .map(|g| format!("{:.1e}/{}", g.remainder().wid(), g.terms().len()))
+            .map(|g| format!("{:.1e}/{}", g.remainder().wid_f64(), g.terms().len()))
             .collect();
+        let cw = y[N]
+            .terms()
+            .iter()
+            .map(|(_, c)| c.wid_f64())
+            .fold(0.0, f64::max);
         eprintln!(
-            "start: t1 {t1} δ {delta:.3e} u* width {:.1e}; roles {roles:?}; remainders/terms {}",
-            ustar.wid(),
+            "start: t1 {t1} δ {delta:.3e} t(δ) width {:.1e}, t's widest coefficient {cw:.1e}, u* width {:.1e}; roles {roles:?}; remainders/terms {}",
+            t.eval(&point(delta)).wid_f64(),
+            ustar.wid_f64(),
             rems.join(" ")
         );
     }
@@ -216,21 +224,27 @@ pub fn start_point<const N: usize>(
 /// low-order piece x₀ + τ·f(Y) over [t₀, t₁] for the event scan and the dense output (as
 /// [`super::crossing_step`]; the set is a point, so the mean-value form has no Jacobian term).
 /// `None` when either cannot be proved.
-pub fn start_step<const N: usize>(
-    gts_tape: &Tape<Gts, N>,
-    basis: &Arc<Basis>,
-    tape: &Tape<Interval, N>,
+pub fn start_step<const N: usize, I: Enclosure>(
+    gts_tape: &Tape<Gts<I>, N>,
+    basis: &Arc<Basis<I>>,
+    tape: &Tape<I, N>,
     t0: f64,
-    x0: &[Interval; N],
+    x0: &[I; N],
     delta: f64,
     opts: &SingularOptions,
-) -> Option<StepOut<N>> {
+) -> Option<StepOut<N, I>> {
     let (t1, z) = start_point(gts_tape, basis, tape, t0, x0, delta, opts)?;
     let lo = low_order_step(tape, t0, x0, t1 - t0)?;
+    if std::env::var_os("BWCL_TRACE_SING").is_some() && lo.piece.t1() != t1 {
+        eprintln!(
+            "start: the low-order piece ends at {} ≠ t₁ = {t1}",
+            lo.piece.t1()
+        );
+    }
     if lo.piece.t1() != t1 {
         return None;
     }
-    let x1: [Interval; N] = std::array::from_fn(|i| z[i].intersection(lo.x1[i]));
+    let x1: [I; N] = std::array::from_fn(|i| z[i].intersection(&lo.x1[i]));
     if x1.iter().any(|c| c.is_empty()) {
         return None;
     }

@@ -3,18 +3,47 @@
 //! point 0. A step across x = 0 from a small box must end in a box whose energy enclosure holds
 //! the energy of every corner of the start box (computed with MPFR at 200 bits): the image of
 //! the box, not only of its centre.
+//!
+//! Each check runs on f64 intervals and on MPFR intervals (`Mpi<128>`, the expansions'
+//! tunables of [`SingularOptions::at_precision`] for a tolerance 1e-33), where the enclosures
+//! must be as narrow as that precision allows (≤ 1e-30 where the start box is a point).
 
 use super::*;
 use crate::arith::Scalar;
+use crate::arith::mpfr::Mpi;
 use crate::engines::taylor::rec::Rec;
+use inari::Interval;
 use rug::Float;
 use rug::ops::Pow;
 
-fn hertz(p: &str) -> (Tape<Interval, 2>, Interval) {
-    let q = Interval::parse_decimal(p).unwrap();
-    let tape = Tape::<Interval, 2>::record(|v: &[Rec<Interval>; 2]| {
-        vec![v[1].clone(), -Scalar::spow(&v[0], &q)]
-    });
+type M = Mpi<128>;
+
+/// The options of the checks: at f64 precision as given, at MPFR precision the tunables for a
+/// tolerance 1e-33 (30 digits).
+fn opts_for<I: Enclosure>(f64_opts: SingularOptions) -> SingularOptions {
+    if I::epsilon() >= f64::EPSILON {
+        f64_opts
+    } else {
+        SingularOptions::at_precision(I::epsilon(), 1e-33)
+    }
+}
+
+/// The width an enclosure of a point's flow may have: a few ulps at f64, 1e-30 at MPFR.
+fn tight<I: Enclosure>(f64_tight: f64) -> f64 {
+    if I::epsilon() >= f64::EPSILON {
+        f64_tight
+    } else {
+        1e-30
+    }
+}
+
+fn iv<I: Enclosure>(a: f64, b: f64) -> I {
+    I::from_bounds(a, b).unwrap()
+}
+
+fn hertz<I: Enclosure>(p: &str) -> (Tape<I, 2>, I) {
+    let q = I::parse_decimal(p).unwrap();
+    let tape = Tape::<I, 2>::record(|v: &[Rec<I>; 2]| vec![v[1].clone(), -Scalar::spow(&v[0], &q)]);
     (tape, q)
 }
 
@@ -29,67 +58,72 @@ fn energy_mpfr(x: f64, v: f64, p: &str) -> Float {
     Float::with_val(prec, xp / &p1) + v2
 }
 
-fn energy_iv(x: &[Interval; 2], q: Interval) -> Interval {
-    let p1 = q + Interval::one();
-    Real::apow(&x[0], &p1) / p1 + x[1] * x[1] / Interval::from_int(2)
+fn energy_iv<I: Enclosure>(x: &[I; 2], q: &I) -> I {
+    let p1 = q.clone() + I::one();
+    Real::apow(&x[0], &p1) / p1 + x[1].clone() * x[1].clone() / I::from_int(2)
 }
 
-fn check_crossing(p: &str, x0: f64, v0: f64, half: f64) {
-    let (tape, q) = hertz(p);
-    let opts = SingularOptions {
+/// `e` (an exact value) in the enclosure `x`: against x's outward f64 ends, and — since those
+/// are loose at MPFR precision — `inner` (an enclosure of e in the type) inside x.
+fn holds<I: Enclosure>(x: &I, e: &Float, inner: &I) -> bool {
+    Float::with_val(200, x.lo()) <= *e && *e <= Float::with_val(200, x.hi()) && inner.subset(x)
+}
+
+fn check_crossing<I: Enclosure>(p: &str, x0: f64, v0: f64, half: f64) -> f64 {
+    let (tape, q) = hertz::<I>(p);
+    let opts = opts_for::<I>(SingularOptions {
         max_exp: 6.0,
         iterations: 4,
         tighten: 2,
         ..SingularOptions::default()
-    };
+    });
     let st = SingularTape::of(&tape, &opts).expect("constant exponents");
-    let dual = tape.map(|c| Dual::constant(*c));
-    let bx = [
-        Interval::try_from((x0 - half, x0 + half)).unwrap(),
-        Interval::try_from((v0 - half, v0 + half)).unwrap(),
-    ];
+    let dual = tape.map(|c| Dual::constant(c.clone()));
+    let bx: [I; 2] = [iv(x0 - half, x0 + half), iv(v0 - half, v0 + half)];
     let out = crossing_step(&st, &tape, &dual, 0.0, &bx, None, 0, &opts)
         .unwrap_or_else(|| panic!("p = {p}: the crossing is refused"));
     // it crossed: x changed sign
-    assert!(out.x1[0].sup() < 0.0, "p = {p}: {:?}", out.x1);
-    let e1 = energy_iv(&out.x1, q);
+    assert!(out.x1[0].hi() < 0.0, "p = {p}: {:?}", out.x1);
+    let e1 = energy_iv(&out.x1, &q);
     for (cx, cv) in [
-        (bx[0].inf(), bx[1].inf()),
-        (bx[0].inf(), bx[1].sup()),
-        (bx[0].sup(), bx[1].inf()),
-        (bx[0].sup(), bx[1].sup()),
+        (bx[0].inf_point(), bx[1].inf_point()),
+        (bx[0].inf_point(), bx[1].sup_point()),
+        (bx[0].sup_point(), bx[1].inf_point()),
+        (bx[0].sup_point(), bx[1].sup_point()),
     ] {
-        let e = energy_mpfr(cx, cv, p);
+        let e = energy_mpfr(cx.mid(), cv.mid(), p);
+        let inner = energy_iv(&[cx, cv], &q);
         assert!(
-            Float::with_val(200, e1.inf()) <= e && e <= Float::with_val(200, e1.sup()),
+            holds(&e1, &e, &inner),
             "p = {p}: E(corner) = {e} outside {e1:?}"
         );
     }
     // and it is an enclosure of the image, not of everything: a few times the box's width
-    assert!(e1.wid() < 20.0 * half, "p = {p}: {e1:?}");
+    assert!(
+        e1.wid_f64() < 20.0 * half + tight::<I>(0.0),
+        "p = {p}: {e1:?}"
+    );
+    e1.wid_f64()
 }
 
 /// A box thin in x and wide in v: over the step, x picks up ∫v, so the image of the box is
 /// sheared (the Jacobian's off-diagonal τ). Each corner's own flow (a point step, which uses no
 /// Jacobian) must end inside the box's image.
-fn check_shear(p: &str) {
-    let (tape, _) = hertz(p);
-    let opts = SingularOptions::default();
+fn check_shear<I: Enclosure>(p: &str) {
+    let (tape, _) = hertz::<I>(p);
+    let opts = opts_for::<I>(SingularOptions::default());
     let st = SingularTape::of(&tape, &opts).unwrap();
-    let dual = tape.map(|c| Dual::constant(*c));
-    let bx = [
-        Interval::try_from((2e-3, 2e-3)).unwrap(),
-        Interval::try_from((-1.0 - 1e-8, -1.0 + 1e-8)).unwrap(),
-    ];
+    let dual = tape.map(|c| Dual::constant(c.clone()));
+    let bx: [I; 2] = [iv(2e-3, 2e-3), iv(-1.0 - 1e-8, -1.0 + 1e-8)];
     let out = crossing_step(&st, &tape, &dual, 0.0, &bx, None, 0, &opts).expect("crossed");
     let t1 = out.piece.t1();
-    for v in [bx[1].inf(), bx[1].sup()] {
-        let c = [bx[0], point(v)];
+    for v in [bx[1].inf_point(), bx[1].sup_point()] {
+        let c = [bx[0].clone(), v.clone()];
         let (_, z) = cross_point(&st, &tape, 0.0, &c, 0, &opts, Some(t1)).expect("point");
         for (i, (zi, xi)) in z.iter().zip(&out.x1).enumerate() {
             assert!(
-                Interval::subset(*zi, *xi),
-                "p = {p}, v0 = {v}: component {i}: {zi:?} not in {xi:?}"
+                zi.subset(xi),
+                "p = {p}, v0 = {v:?}: component {i}: {zi:?} not in {xi:?}"
             );
         }
     }
@@ -98,39 +132,58 @@ fn check_shear(p: &str) {
 #[test]
 fn the_image_of_a_sheared_box_holds_each_corners_flow() {
     for p in ["1.5", "2.28"] {
-        check_shear(p);
+        check_shear::<Interval>(p);
+        check_shear::<M>(p);
     }
 }
 
 #[test]
 fn hertz_crossings_keep_the_energy_of_every_corner() {
     for p in ["1.5", "1.27", "2.28", "3.14"] {
-        check_crossing(p, 2e-3, -1.0, 1e-12);
-        check_crossing(p, 5e-4, -0.7, 1e-9);
+        check_crossing::<Interval>(p, 2e-3, -1.0, 1e-12);
+        check_crossing::<Interval>(p, 5e-4, -0.7, 1e-9);
+        // at the distance the MPFR tunables trigger the step (their δ^M ≈ tol)
+        let near = opts_for::<M>(SingularOptions::default()).near;
+        check_crossing::<M>(p, near, -1.0, 1e-12);
+        check_crossing::<M>(p, 0.5 * near, -0.7, 1e-9);
+    }
+}
+
+/// At MPFR precision from a point (a box of width 0): the energy is proved to 1e-30 across the
+/// branch point, which f64 intervals cannot do (their ulp is 2e-16).
+#[test]
+fn hertz_crossings_of_a_point_are_proved_to_30_digits_at_128_bits() {
+    for p in ["1.5", "1.27", "2.28", "3.14"] {
+        let near = opts_for::<M>(SingularOptions::default()).near;
+        for (x0, v0) in [(near, -1.0), (0.5 * near, -0.7)] {
+            let w = check_crossing::<M>(p, x0, v0, 0.0);
+            assert!(w <= 1e-30, "p = {p}, x0 = {x0}: width {w:e}");
+        }
     }
 }
 
 #[test]
 fn a_crossing_with_the_velocity_reaching_zero_is_refused() {
-    // x near 0 but v = 0 there too (x does not cross: the expansion in x does not exist)
-    let (tape, _) = hertz("1.5");
-    let opts = SingularOptions::default();
-    let st = SingularTape::of(&tape, &opts).unwrap();
-    let dual = tape.map(|c| Dual::constant(*c));
-    let bx = [
-        Interval::try_from((1e-3, 1e-3)).unwrap(),
-        Interval::try_from((-1e-6, 1e-6)).unwrap(),
-    ];
-    assert!(crossing_step(&st, &tape, &dual, 0.0, &bx, None, 0, &opts).is_none());
+    fn check<I: Enclosure>() {
+        // x near 0 but v = 0 there too (x does not cross: the expansion in x does not exist)
+        let (tape, _) = hertz::<I>("1.5");
+        let opts = opts_for::<I>(SingularOptions::default());
+        let st = SingularTape::of(&tape, &opts).unwrap();
+        let dual = tape.map(|c| Dual::constant(c.clone()));
+        let bx: [I; 2] = [iv(1e-3, 1e-3), iv(-1e-6, 1e-6)];
+        assert!(crossing_step(&st, &tape, &dual, 0.0, &bx, None, 0, &opts).is_none());
+    }
+    check::<Interval>();
+    check::<M>();
 }
 
 /// The Hertz oscillator with a twin: ẋ = v, ż = v, v̇ = −½|x|^(p−1)x − ½|z|^(p−1)z from
 /// x = z = 0, v = −1 (z ≡ x: two components at the branch point at once, as at the models'
 /// start; the force is half z's). E = v²/2 + |x|^(p+1)/(p+1) = 1/2 along the solution.
-fn hertz_twin(p: &str) -> (Tape<Interval, 3>, Interval) {
-    let q = Interval::parse_decimal(p).unwrap();
-    let half = Interval::try_from((0.5, 0.5)).unwrap();
-    let tape = Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+fn hertz_twin<I: Enclosure>(p: &str) -> (Tape<I, 3>, I) {
+    let q = I::parse_decimal(p).unwrap();
+    let half = I::from_exact_f64(0.5);
+    let tape = Tape::<I, 3>::record(|v: &[Rec<I>; 3]| {
         vec![
             v[2].clone(),
             v[2].clone(),
@@ -142,35 +195,32 @@ fn hertz_twin(p: &str) -> (Tape<Interval, 3>, Interval) {
 
 /// The start step of the twin Hertz oscillator: the energy enclosure at t₁ holds 1/2 (compared
 /// exactly), z − x holds 0, and x moved (the step went somewhere).
-fn check_start(p: &str, delta: f64) -> [Interval; 3] {
-    let (tape, q) = hertz_twin(p);
-    let opts = SingularOptions::default();
+fn check_start<I: Enclosure>(p: &str, delta: f64) -> [I; 3] {
+    let (tape, q) = hertz_twin::<I>(p);
+    let opts = opts_for::<I>(SingularOptions::default());
     let st = SingularTape::of(&tape, &opts).expect("constant exponents");
     let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
-    let x0 = [ZERO, ZERO, -ONE];
+    let x0: [I; 3] = [I::zero(), I::zero(), -I::one()];
     let out = start::start_step(&st.tape, &basis, &tape, 0.0, &x0, delta, &opts)
         .unwrap_or_else(|| panic!("p = {p}: the start step is refused"));
     let x1 = out.x1;
-    assert!(x1[0].sup() < 0.0 && x1[1].sup() < 0.0, "p = {p}: {x1:?}");
-    let e1 = energy_iv(&[x1[0], x1[2]], q);
-    let half = Interval::try_from((0.5, 0.5)).unwrap();
+    assert!(x1[0].hi() < 0.0 && x1[1].hi() < 0.0, "p = {p}: {x1:?}");
+    let e1 = energy_iv(&[x1[0].clone(), x1[2].clone()], &q);
+    let half = I::from_exact_f64(0.5);
     assert!(
-        half.subset(e1),
+        half.subset(&e1),
         "p = {p}, δ = {delta}: E = {e1:?} misses 1/2"
     );
-    assert!(
-        ZERO.subset(x1[1] - x1[0]),
-        "p = {p}: z − x = {:?}",
-        x1[1] - x1[0]
-    );
+    let d = x1[1].clone() - x1[0].clone();
+    assert!(I::zero().subset(&d), "p = {p}: z − x = {d:?}");
     // an enclosure, not everything: a few ulps of 1/2 at the default δ (the remainder grows
     // like δ^M beyond it)
     let tight = if delta <= opts.start_delta {
-        1e-14
+        tight::<I>(1e-14)
     } else {
-        1e-10
+        tight::<I>(1e-10)
     };
-    assert!(e1.wid() < tight, "p = {p}, δ = {delta}: {e1:?}");
+    assert!(e1.wid_f64() < tight, "p = {p}, δ = {delta}: {e1:?}");
     x1
 }
 
@@ -178,8 +228,11 @@ fn check_start(p: &str, delta: f64) -> [Interval; 3] {
 fn the_start_step_keeps_the_energy_of_the_hertz_oscillator() {
     for p in ["1.5", "1.27", "2.28", "3.14"] {
         for delta in [1e-3, 5e-3, 2e-2] {
-            check_start(p, delta);
+            check_start::<Interval>(p, delta);
         }
+        let d = opts_for::<M>(SingularOptions::default()).start_delta;
+        check_start::<M>(p, d);
+        check_start::<M>(p, 0.5 * d);
     }
 }
 
@@ -187,11 +240,11 @@ fn the_start_step_keeps_the_energy_of_the_hertz_oscillator() {
 /// ½|z|^(p−1)z(1 + z)² from x = z = 0, v = −1. Then z = x/(1 − x) (dz/dx = (1 + z)²), so z's
 /// W = 1/(1 + u) is not constant (x = −u), and E = v²/2 + (|x|^(p+1) + |z|^(p+1))/(2(p+1)) =
 /// 1/2 (Ė = 0 term by term). The start step's box at t₁ must hold E = 1/2 and z(1 − x) − x = 0.
-fn check_start_pair(p: &str, delta: f64) {
-    let q = Interval::parse_decimal(p).unwrap();
-    let half = Interval::try_from((0.5, 0.5)).unwrap();
-    let tape = Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
-        let one_z = v[1].shift(&Interval::one());
+fn check_start_pair<I: Enclosure>(p: &str, delta: f64) {
+    let q = I::parse_decimal(p).unwrap();
+    let half = I::from_exact_f64(0.5);
+    let tape = Tape::<I, 3>::record(|v: &[Rec<I>; 3]| {
+        let one_z = v[1].shift(&I::one());
         let sq = one_z.clone() * one_z;
         vec![
             v[2].clone(),
@@ -199,33 +252,33 @@ fn check_start_pair(p: &str, delta: f64) {
             -(Scalar::spow(&v[0], &q) + Scalar::spow(&v[1], &q) * sq).scale(&half),
         ]
     });
-    let opts = SingularOptions::default();
+    let opts = opts_for::<I>(SingularOptions::default());
     let st = SingularTape::of(&tape, &opts).expect("constant exponents");
     let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
-    let x0 = [ZERO, ZERO, -ONE];
+    let x0: [I; 3] = [I::zero(), I::zero(), -I::one()];
     let out = start::start_step(&st.tape, &basis, &tape, 0.0, &x0, delta, &opts)
         .unwrap_or_else(|| panic!("p = {p}: the start step is refused"));
     let [x, z, v] = out.x1;
-    assert!(x.sup() < 0.0 && z.sup() < 0.0, "p = {p}: {:?}", out.x1);
-    let p1 = q + ONE;
-    let e1 = (Real::apow(&x, &p1) + Real::apow(&z, &p1)) / (p1 * Interval::from_int(2))
-        + v * v / Interval::from_int(2);
+    assert!(x.hi() < 0.0 && z.hi() < 0.0, "p = {p}: {x:?} {z:?}");
+    let p1 = q.clone() + I::one();
+    let e1 = (Real::apow(&x, &p1) + Real::apow(&z, &p1)) / (p1 * I::from_int(2))
+        + v.clone() * v / I::from_int(2);
     assert!(
-        half.subset(e1),
+        half.subset(&e1),
         "p = {p}, δ = {delta}: E = {e1:?} misses 1/2"
     );
-    let inv = z * (ONE - x) - x;
+    let inv = z * (I::one() - x.clone()) - x;
     assert!(
-        ZERO.subset(inv),
+        I::zero().subset(&inv),
         "p = {p}, δ = {delta}: z(1 − x) − x = {inv:?}"
     );
     let tight = if delta <= opts.start_delta {
-        1e-13
+        tight::<I>(1e-13)
     } else {
-        1e-9
+        tight::<I>(1e-9)
     };
     assert!(
-        e1.wid() < tight && inv.wid() < tight,
+        e1.wid_f64() < tight && inv.wid_f64() < tight,
         "p = {p}, δ = {delta}: {e1:?} {inv:?}"
     );
 }
@@ -234,7 +287,10 @@ fn check_start_pair(p: &str, delta: f64) {
 fn the_start_step_keeps_the_invariants_of_a_coupled_pair() {
     for p in ["1.5", "1.27", "2.28", "3.14"] {
         for delta in [1e-3, 5e-3, 2e-2] {
-            check_start_pair(p, delta);
+            check_start_pair::<Interval>(p, delta);
         }
+        let d = opts_for::<M>(SingularOptions::default()).start_delta;
+        check_start_pair::<M>(p, d);
+        check_start_pair::<M>(p, 0.5 * d);
     }
 }
