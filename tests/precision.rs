@@ -108,7 +108,7 @@ fn precise_enclosures_contain_the_references_and_the_f64_ones_their_midpoints() 
 #[ignore]
 fn digits_floors() {
     for &(kind, base, v0) in CASES {
-        for digits in [20, 30, 40] {
+        for digits in [20, 30, 40, 60] {
             let t0 = std::time::Instant::now();
             let p = ParamText::Base {
                 base: base.into(),
@@ -174,4 +174,37 @@ fn thirty_digits_on_the_four_table1_sets() {
         );
         assert!(contains(fe, &mid(&r.e)), "{name}: {fe:?} ∌ mid {:?}", r.e);
     }
+}
+
+/// Sixty digits (issue #15) on SHC DSS at v0 = 1: ≤ 1e-60 wide, inside the independently
+/// proved 30-digit enclosure, and within 1e-32 of the oracle's 36-digit reference (two
+/// settings of the non-rigorous oracle agree to ≥ 32 digits: the file's header). Before the
+/// step-size estimate went through log₂ (tol/|x_K| underflowed to 0 a few 10⁻⁶ after the
+/// start) and M grew with D, this case stopped with "cannot cross" at T ≈ 2e-6.
+#[test]
+fn sixty_digits_nest_in_thirty_and_meet_the_reference() {
+    let (kind, base) = (ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27");
+    let t0 = std::time::Instant::now();
+    let r = precise(kind, base, "1", 60);
+    let (wts, we) = (r.width_ts().to_f64(), r.width_e().to_f64());
+    eprintln!(
+        "SHC DSS: 60 digits, {} bits, width ts {wts:e}, e {we:e}, {} pieces, {:?}",
+        r.bits,
+        r.pieces,
+        t0.elapsed()
+    );
+    assert!(wts <= 1e-60 && we <= 1e-60, "{wts:e} {we:e}");
+    let r30 = precise(kind, base, "1", 30);
+    let sub = |a: &[Rational; 2], b: &[Rational; 2]| a[0] >= b[0] && a[1] <= b[1];
+    assert!(sub(&r.ts, &r30.ts), "T_s {:?} ⊄ {:?}", r.ts, r30.ts);
+    assert!(sub(&r.e, &r30.e), "e {:?} ⊄ {:?}", r.e, r30.e);
+    let (ts, e) = reference(kind, base, "1");
+    let tol = parse_rational("1e-32").unwrap();
+    let near = |x: &Rational, enc: &[Rational; 2]| {
+        let lo = Rational::from(&enc[0] - &tol);
+        let hi = Rational::from(&enc[1] + &tol);
+        lo <= *x && *x <= hi
+    };
+    assert!(near(&ts, &r.ts), "T_s reference {ts} far from {:?}", r.ts);
+    assert!(near(&e, &r.e), "e reference {e} far from {:?}", r.e);
 }

@@ -11,11 +11,11 @@ use std::path::PathBuf;
 pub const ORDER: RangeInclusive<u64> = 2..=40;
 /// Sub-ranges of a v0 range (each a proof: some 40 ms on the DSS set).
 pub const PIECES: RangeInclusive<u64> = 1..=1024;
-/// Digits of `cor --rigorous --digits`: with the singular step on MPFR intervals 30 digits are
-/// proved in ≈ 1–1.5 s and 40 in ≈ 3 s on the four Table 1 sets at v0 = 1; at 60 the Taylor
-/// steps leaving the start fail (≈ 2e-6 from it), so larger D are refused rather than left
-/// running (issue #15).
-pub const DIGITS: RangeInclusive<u64> = 1..=40;
+/// Digits of `cor --rigorous --digits`: with the singular step on MPFR intervals, measured on
+/// the four Table 1 sets at v0 = 1 (one thread): 30 digits in ≈ 1–1.6 s, 40 in ≈ 2–3.5 s, 60 in
+/// ≈ 5–9 s; SHC DSS 80 digits in 22 s, 100 in 65 s. 100 is the largest tier's reach
+/// ([`crate::observables::precision::MAX_DIGITS`]).
+pub const DIGITS: RangeInclusive<u64> = 1..=100;
 /// Sample times of `trajectory` and `loop`.
 pub const POINTS: RangeInclusive<u64> = 2..=100_000;
 /// Random starts of `fit` (each about 3 s on 20 speeds).
@@ -450,10 +450,11 @@ pub struct CorArgs {
     /// Created only when every piece is proved.
     #[arg(long, value_name = "FILE", requires = "rigorous")]
     pub band: Option<PathBuf>,
-    /// With --rigorous: prove T_s and e to D significant digits, 1 ≤ D ≤ 40, on intervals
+    /// With --rigorous: prove T_s and e to D significant digits, 1 ≤ D ≤ 100, on intervals
     /// over MPFR floats (128, 192, 256 or 384 bits: the smallest with ≥ 3.33·D + 24); the
-    /// Taylor order and the tolerances follow D. Every digit the width allows is printed,
-    /// bounds rounded outward. For --nd or --base with single values of v0.
+    /// Taylor order and the tolerances follow D (30 digits take ≈ 1–2 s, 60 ≈ 5–9 s, 100 about
+    /// a minute). Every digit the width allows is printed, bounds rounded outward. For --nd
+    /// or --base with single values of v0.
     #[arg(long, value_name = "D", allow_hyphen_values = true,
           value_parser = count(DIGITS))]
     pub digits: Option<usize>,

@@ -25,9 +25,14 @@
 //! (≈ 2–4·10⁻¹⁶ at T ≈ 1–3) and adds at least ≈ that squared to the width: about 10⁻³¹.
 //! Beyond f64 the engine therefore crosses the branch points, the kinks and the start by the
 //! singular step on MPFR intervals ([`crate::engines::taylor::singular`], tunables
-//! `SingularOptions::at_precision`: M = 7, trigger distance tol^(1/M)): measured 30 digits in
-//! ≈ 1–1.5 s and 40 in ≈ 3 s on the four Table 1 sets at v0 = 1; at 60 the Taylor steps
-//! leaving the start fail ≈ 2·10⁻⁶ from it (not yet understood).
+//! `SingularOptions::at_precision`: M = max(7, ⌈(D + 3)/7⌉), trigger distance tol^(1/M)):
+//! measured on the four Table 1 sets at v0 = 1, one thread, 30 digits in 0.96–1.63 s, 40 in
+//! 1.9–3.5 s, 60 in 5.2–8.8 s (SHC DSS: 80 digits in 22 s, 100 in 65 s).
+//!
+//! **Beyond f64's range.** Near a branch point the Taylor coefficients of order K grow like
+//! dist^−K: at 60 digits (K = 60) ≈ 10³⁰⁰ a few 10⁻⁶ from the start, so the step-size
+//! estimates and remainder widths are taken through log₂ where an f64 ratio would overflow
+//! or underflow (an underflowed tol/|x_K| had made every step "too short" there).
 
 use crate::arith::mpfr::Mpi;
 use crate::engines::taylor::{RigorError, TaylorOptions, integrate_to_separation};

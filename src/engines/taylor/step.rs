@@ -232,11 +232,14 @@ fn validate<const N: usize, I: Enclosure>(
         top_m = top_m.max(c[k].mag_f64());
         for (kk, ck) in [(k - 1, &c[k - 1]), (k, &c[k])] {
             let m = ck.mag_f64();
-            if m > 0.0 && m.is_finite() {
-                h = h.min((tol / m).powf(1.0 / kk as f64));
+            let q = tol / m;
+            if m > 0.0 && q.is_normal() {
+                h = h.min(q.powf(1.0 / kk as f64));
             } else if m > 0.0 {
-                // beyond f64's range (a precise type close to a branch point, where the
-                // coefficients grow like dist^−k): the same estimate through log₂
+                // tol/m beyond f64's range (a precise type close to a branch point, where the
+                // coefficients grow like dist^−k: at 60 digits tol = 10⁻⁶³ over a coefficient
+                // ≈ 10³⁰⁰ underflowed to h = 0 ≈ 2·10⁻⁶ after the start): the same estimate
+                // through log₂
                 h = h.min(((tol.log2() - ck.mag_log2()) / kk as f64).exp2());
             }
         }

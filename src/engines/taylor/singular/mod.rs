@@ -130,12 +130,23 @@ impl SingularOptions {
     }
 }
 
-/// The cut-off M beyond f64 precision.
+/// The smallest cut-off M beyond f64 precision.
 const HIGH_PRECISION_M: f64 = 7.0;
+/// The trigger distance is at least 10^−`NEAR_DECADES`: beyond ≈ 50 digits M grows instead
+/// (see [`high_precision`]).
+const NEAR_DECADES: f64 = 7.0;
 
 /// The tunables at a precision beyond f64 (machine epsilon `eps`, tolerance `tol` per step):
-/// M = 7 and the trigger distance near = tol^(1/M) (so that δ^M ≈ tol: the expansions'
-/// remainder is ∝ δ^M with δ ≈ |ẇ|·near), the start step on the same δ and M.
+/// M = max(7, ⌈−log₁₀(tol)/7⌉) and the trigger distance near = tol^(1/M) (so that δ^M ≈ tol:
+/// the expansions' remainder is ∝ δ^M with δ ≈ |ẇ|·near), the start step on the same δ and M.
+/// Up to ≈ 46 digits (tol ≥ 10⁻⁴⁹) this is M = 7 with near ≥ 10⁻⁷; beyond, M grows so that
+/// near stays ≈ 10⁻⁷ (60 digits: M = 9).
+///
+/// Measured at 60 digits (tol 1e-63, 256 bits; the four Table 1 sets at v0 = 1, one thread,
+/// 2026-11-25, load < 1): M = 7 put near at 10⁻⁹ (clamped to 10⁻⁸), where the start step ends
+/// 2.8e-58 wide, far above its limit (cross_tol 10⁻⁶⁴), and the low-order steps cannot cross;
+/// M = 9, near 1e-7: 5.3–8.7 s (376–441 pieces, e ≤ 6.3e-63 wide); M = 10, 3e-7: 4.8–9.7 s;
+/// M = 12, 1e-6: 4.7–13.4 s; M = 14, 3e-6: 5.3–28.9 s (the basis grows like M²).
 ///
 /// Measured on SHC DSS, v0 = 1, 30 digits (128 bits, tol 1e-33; one thread, load ≈ 3 on 2
 /// CPUs, 2026-11-25): near 1e-3 with M = 12 crossed Z = 0 in 3.7 s (262 exponents, 3 + 7
@@ -147,7 +158,7 @@ const HIGH_PRECISION_M: f64 = 7.0;
 /// coefficients 1.5 wide, 6 settled them). Up to 24 candidates (8 were too few at 128 bits:
 /// the start validated at candidate 9–12); the inflation a few ulps of the precision.
 fn high_precision(eps: f64, tol: f64) -> SingularOptions {
-    let m = HIGH_PRECISION_M;
+    let m = HIGH_PRECISION_M.max((-tol.log10() / NEAR_DECADES).ceil());
     let near = tol.powf(1.0 / m).clamp(1e-8, 1e-3);
     SingularOptions {
         max_exp: m,
