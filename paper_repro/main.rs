@@ -4,12 +4,13 @@
 //!
 //! ```text
 //! cargo run --release --bin paper-repro                  # float curves, loops, fit demo
-//! cargo run --release --bin paper-repro -- --rigorous    # + proved enclosure bands
+//! cargo run --release --bin paper-repro -- --rigorous    # + proved bands, 30-digit table
 //! cargo run --release --bin paper-repro -- synth         # rewrite paper_repro/data/synthetic_dss.csv
 //! ```
 
 mod cor;
 mod demo;
+mod digits;
 mod font;
 mod loops;
 mod plot;
@@ -220,6 +221,27 @@ fn run(args: Args) -> Result<(), String> {
         None
     };
     let mut files = report::write_cor(&out, &v0, &curves, proved.as_ref().map(|p| &p.0))?;
+    // the 30-digit reference table (issue #15): into out/ and, with the default out/, the copy
+    // in paper_repro/data/ that tests/precision.rs checks the f64-interval engine against
+    let reference = if args.rigorous && !args.quick {
+        eprintln!(
+            "Reference table: the 28 cases proved to {} digits…",
+            digits::DIGITS
+        );
+        let rows = digits::table();
+        let text = digits::csv(&rows);
+        let mut paths = vec![out.join("reference_30_digits.csv")];
+        if args.out.is_none() {
+            paths.push(PathBuf::from(ROOT).join(digits::DATA));
+        }
+        for p in &paths {
+            std::fs::write(p, &text).map_err(|e| format!("writing '{}': {e}", p.display()))?;
+        }
+        files.push(paths[0].display().to_string());
+        Some(rows)
+    } else {
+        None
+    };
 
     // Fig. 4
     eprintln!("Fig. 4: baseball hysteresis loops…");
@@ -267,6 +289,7 @@ fn run(args: Args) -> Result<(), String> {
         float_points,
         rig: proved.as_ref(),
         band: &band_stats,
+        reference: reference.as_deref(),
         loops: &loops,
         curves: &curves,
         v0: &v0,
