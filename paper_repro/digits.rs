@@ -55,6 +55,13 @@ pub fn table() -> Vec<Row> {
         .collect()
 }
 
+/// The printed ends of T_s and e: every digit the width allows, lo rounded down, hi up.
+fn ends(p: &PreciseEnclosure) -> [String; 4] {
+    let (tl, th) = outward_text(&p.ts, p.bits);
+    let (el, eh) = outward_text(&p.e, p.bits);
+    [tl, th, el, eh]
+}
+
 fn set_name(s: &Table1Set) -> String {
     format!("{} {}", model_title(s.kind), s.data)
 }
@@ -70,8 +77,7 @@ pub fn csv(rows: &[Row]) -> String {
     for r in rows {
         match &r.res {
             Ok(p) => {
-                let (tl, th) = outward_text(&p.ts, p.bits);
-                let (el, eh) = outward_text(&p.e, p.bits);
+                let [tl, th, el, eh] = ends(p);
                 s.push_str(&format!(
                     "{},{},\"{}\",{},{tl},{th},{el},{eh},{}\n",
                     r.set.kind.name(),
@@ -101,8 +107,7 @@ pub fn markdown(rows: &[Row]) -> String {
     for r in rows {
         match &r.res {
             Ok(p) => {
-                let (tl, th) = outward_text(&p.ts, p.bits);
-                let (el, eh) = outward_text(&p.e, p.bits);
+                let [tl, th, el, eh] = ends(p);
                 s.push_str(&format!(
                     "| {} | {} | [{tl}, {th}] | {} | [{el}, {eh}] | {} | {} | {:.2} |\n",
                     set_name(r.set),
