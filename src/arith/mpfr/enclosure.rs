@@ -117,6 +117,7 @@ impl<const B: u32> Enclosure for Mpi<B> {
 mod tests {
     use super::*;
     use rug::Rational;
+    use rug::ops::Pow;
 
     type M = Mpi<128>;
 
@@ -138,5 +139,52 @@ mod tests {
         assert!(M::epsilon() == 2f64.powi(-127));
         let nn = M::from_bounds(-1.0, 2.0).unwrap().nonneg();
         assert!(nn.same(&M::from_bounds(0.0, 2.0).unwrap()));
+    }
+
+    /// [a, b]^k by the trait's default `powi_signed` (the singular step's u^k on a range of
+    /// any sign, at MPFR precision): contains the exact range (from the ends' exact powers
+    /// and 0 for even k across 0, as rationals) and is no wider than it plus a few ulps — for
+    /// intervals below, across and above 0, thin and touching 0, k = 0 … 7.
+    #[test]
+    fn signed_powers_enclose_the_exact_range_tightly() {
+        let ends = [
+            (-1.5, -0.25),
+            (-0.75, 2.0),
+            (-2.0, 0.5),
+            (0.125, 3.0),
+            (-1.0, 0.0),
+            (0.0, 1.0),
+            (-0.3, -0.3),
+            (0.1, 0.1),
+            (-1e-30, 1e-30),
+        ];
+        for (a, b) in ends {
+            let x = M::from_bounds(a, b).unwrap();
+            for k in 0..=7u32 {
+                let p = x.powi_signed(k);
+                let (ra, rb) = (
+                    Rational::from_f64(a).unwrap().pow(k),
+                    Rational::from_f64(b).unwrap().pow(k),
+                );
+                let mut lo = ra.clone().min(rb.clone());
+                let mut hi = ra.max(rb);
+                if k == 0 {
+                    // x^0 = 1 (across 0 the default gives [0, 1]: sound, not tight)
+                    (lo, hi) = (Rational::from(1), Rational::from(1));
+                } else if k % 2 == 0 && a < 0.0 && b > 0.0 {
+                    lo = Rational::new();
+                }
+                assert!(
+                    *p.inf() <= lo && hi <= *p.sup(),
+                    "[{a}, {b}]^{k}: {p:?} ∌ [{lo}, {hi}]"
+                );
+                let slack = Rational::from_f64(1e-30 * (1.0 + a.abs().max(b.abs()).powi(k as i32)))
+                    .unwrap();
+                let exact_w = Rational::from(&hi - &lo);
+                let w = p.sup().to_rational().unwrap() - p.inf().to_rational().unwrap();
+                let tight = k == 0 && a < 0.0 && b > 0.0 || w <= exact_w + slack;
+                assert!(tight, "[{a}, {b}]^{k}: {p:?} wider than [{lo}, {hi}]");
+            }
+        }
     }
 }
