@@ -501,6 +501,7 @@ def cor_rigorous(
     raise_on_failure: bool = False,
     fallback_bits: int = 256,
     fallback_seconds: float = 60.0,
+    digits: Optional[int] = None,
 ) -> RigorousResult:
     """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
     Taylor engine, one case per impact speed.
@@ -526,6 +527,12 @@ def cor_rigorous(
         undecidable", "grew too wide", "cannot cross") is tried again on MPFR intervals at
         128, 192, then 256 bits, up to this many (0, 128, 192 or 256; 0 turns it off).
     fallback_seconds : wall-clock budget of each precision of the fallback, 0 < S ≤ 3600.
+    digits : prove T_s and e to this many significant digits, 1 ≤ D ≤ 100, on intervals over
+        MPFR floats (``bwcl cor --rigorous --digits D``: 30 digits take ≈ 1–2 s a case, 60
+        ≈ 5–9 s); ``ts_text`` and ``e_text`` then carry every digit the width allows, rounded
+        outward, ``ts`` and ``e`` the ends rounded outward to doubles, ``bits`` the precision
+        (128, 192, 256 or 384). Single values only (no ranges, not with ``physical``); the
+        Taylor order and tolerances follow D (``order`` reports it).
 
     Returns
     -------
@@ -540,6 +547,8 @@ def cor_rigorous(
         f"--fallback-bits={_num(fallback_bits, 'fallback_bits')}",
         f"--fallback-seconds={_num(fallback_seconds, 'fallback_seconds')}",
     ]
+    if digits is not None:
+        argv += [f"--digits={_num(digits, 'digits')}"]
     tokens = None if v0 is None else _speed_tokens(v0, True)
     d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, threads=_threads(threads))
     n = len(d["proved"])

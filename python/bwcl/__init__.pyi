@@ -155,6 +155,7 @@ def cor_rigorous(
     raise_on_failure: bool = ...,
     fallback_bits: int = ...,
     fallback_seconds: float = ...,
+    digits: Optional[int] = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,

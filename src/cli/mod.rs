@@ -9,7 +9,7 @@ pub(crate) mod commands;
 pub(crate) mod fit;
 pub(crate) mod input;
 pub(crate) mod output;
-mod precise;
+pub(crate) mod precise;
 
 use bwcl::fit::data::echo;
 use clap::Parser;

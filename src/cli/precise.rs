@@ -24,7 +24,14 @@ struct Row {
 /// gets its usual message; the texts are the cases' own, [`input::Case::text`]); ranges and
 /// --physical are refused.
 fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
-    let checked = input::cases::<Interval>(&a.params)?;
+    texts(input::cases::<Interval>(&a.params)?)
+}
+
+/// [`cases`] of cases already parsed (the Python bindings parse their speeds in batches): (v0
+/// as written, or "-" for --nd; the parameters as written).
+pub(crate) fn texts(
+    checked: Vec<input::Case<Interval>>,
+) -> Result<Vec<(String, ParamText)>, CliError> {
     if checked
         .iter()
         .any(|c| c.inputs.values().iter().any(sets::is_range))

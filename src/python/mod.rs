@@ -22,6 +22,7 @@ mod cli;
 
 mod arrays;
 mod cor;
+mod digits;
 mod fit;
 mod rigorous;
 mod run;

@@ -39,6 +39,9 @@ pub fn cor_rigorous<'py>(
     if !a.engine.rigorous {
         return Err(PyValueError::new_err("not --rigorous: use bwcl.cor"));
     }
+    if let Some(digits) = a.digits {
+        return super::digits::cor_digits(py, &a, digits, cases, threads);
+    }
     let kind = ModelKind::from(a.params.model);
     let opts = input::taylor_options(&a.engine).map_err(py_error)?;
     let pieces = input::pieces(&a.engine);

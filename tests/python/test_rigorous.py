@@ -98,3 +98,48 @@ def test_the_precision_that_decided_is_reported():
     plain = bwcl.cor_rigorous("shc", base=DSS, v0=[0.5, 1])
     assert plain.proved.all() and plain.bits == (53, 53) and plain.fallback == (None, None)
     assert pickle.loads(pickle.dumps(q)).fallback == q.fallback
+
+
+def test_digits_match_the_cli_and_the_reference_table(cli):
+    """digits=30: the same decimals as `bwcl cor --rigorous --digits 30 --format json` (every
+    digit the width allows, rounded outward), the doubles outward of them, ≤ 1e-30 wide, the
+    f64-interval enclosure around them, and the values of paper_repro's 30-digit table."""
+    from conftest import ROOT
+
+    q = bwcl.cor_rigorous("shc", base=DSS, v0=[1, "0.5"], digits=30)
+    assert q.proved.all() and q.bits == (128, 128) and q.order == 30
+    code, out, err = cli(
+        "cor", "--model", "shc", "--base", DSS, "--v0", "1,0.5", "--rigorous",
+        "--digits", "30", "--format", "json",
+    )
+    assert code == 0, err
+    import json
+
+    rows = json.loads(out, parse_float=str)
+    rows = rows["cases"] if isinstance(rows, dict) else rows
+    for i, row in enumerate(rows):
+        assert tuple(row["ts"]) == q.ts_text[i] and tuple(row["e"]) == q.e_text[i]
+    f64 = bwcl.cor_rigorous("shc", base=DSS, v0=[1, 0.5])
+    for i in range(len(q)):
+        for (lo, hi), enc, wide in ((q.e_text[i], q.e[i], f64.e[i]), (q.ts_text[i], q.ts[i], f64.ts[i])):
+            assert Fraction(enc[0]) <= Fraction(lo) and Fraction(hi) <= Fraction(enc[1])
+            assert Fraction(hi) - Fraction(lo) <= Fraction(1, 10**30)
+            mid = (Fraction(lo) + Fraction(hi)) / 2
+            assert Fraction(wide[0]) <= mid <= Fraction(wide[1])
+        # the widths are the exact enclosures' (rounded up), not the printed ends'
+        assert Fraction(q.width_e_text[i]) <= Fraction(1, 10**30) and q.width_e[i] <= 1e-30
+        assert Fraction(q.width_ts_text[i]) <= Fraction(1, 10**30) and q.width_ts[i] <= 1e-30
+    table = (ROOT / "paper_repro" / "data" / "reference_30_digits.csv").read_text()
+    for i, v in enumerate(["1", "0.5"]):
+        line = next(l for l in table.splitlines() if l.startswith(f'shc,DSS,"{DSS}",{v},'))
+        cells = line.split('"')[2].split(",")
+        assert (cells[2], cells[3]) == q.ts_text[i] and (cells[4], cells[5]) == q.e_text[i]
+
+
+def test_digits_refuse_ranges_and_bad_values():
+    with pytest.raises(ValueError, match="--digits"):
+        bwcl.cor_rigorous("shc", base=DSS, v0=[(0.9, 1.1)], digits=30)
+    with pytest.raises(ValueError, match="digits"):
+        bwcl.cor_rigorous("shc", base=DSS, v0=1, digits=0)
+    with pytest.raises(ValueError, match="digits"):
+        bwcl.cor_rigorous("shc", base=DSS, v0=1, digits=101)
