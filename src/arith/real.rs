@@ -90,6 +90,14 @@ pub trait Real:
     fn spow_apow(&self, q: &Self) -> (Self, Self) {
         (self.spow(q), self.apow(q))
     }
+    /// The other power of a pair of the same x and q (a tape's `Twin`): |x|^(q−1)x when
+    /// `signed`, else |x|^q, given `other`, the pair's other power already computed. The
+    /// default computes it anew (tightest for intervals); a type that knows the sign s of x
+    /// for certain may return s·other (the two differ by that factor exactly).
+    fn twin_pow(&self, q: &Self, other: &Self, signed: bool) -> Self {
+        let _ = other;
+        if signed { self.spow(q) } else { self.apow(q) }
+    }
     /// (|x|^(q−1)x, |x|^(q−1)) at once, for q > 1.
     fn spow_base(&self, q: &Self) -> (Self, Self) {
         (self.spow(q), self.apow(&(q.clone() - Self::one())))

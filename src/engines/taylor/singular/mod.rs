@@ -447,18 +447,45 @@ fn cross_point<const N: usize, I: Enclosure>(
 /// to the first u with t(u) > t1 surely. The midpoints are points of `I` (at MPFR precision the
 /// bracket shrinks to the precision of `I`, not to an f64 ulp), each comparison exact:
 /// t(u) − t1 < 0 (> 0) surely.
-pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> Option<I> {
+///
+/// The bisections start from a bracket [u_g − r, u_g + r] around an estimate u_g (Newton's
+/// method on the midpoint expansion in f64, [`Gts::mid_value_slope`]) once its ends are
+/// checked like every midpoint (t < t1 surely at the lower end, t > t1 at the upper), else
+/// from [0, δ]: the estimate only chooses where to look (measured, SHC DSS v0 = 1: ≈ 30
+/// evaluations of t instead of ≈ 120).
+pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1f: f64, delta: f64) -> Option<I> {
+    exit_parameter_from(t, t1f, delta, exit_guess(t, t1f, delta))
+}
+
+/// [`exit_parameter`] from the bracket `hint` (exact doubles in (0, δ)) where its ends pass
+/// the checks, else from [0, δ].
+fn exit_parameter_from<I: Enclosure>(
+    t: &Gts<I>,
+    t1f: f64,
+    delta: f64,
+    hint: Option<(f64, f64)>,
+) -> Option<I> {
     // enough halvings to reach the ends' precision from δ (200 for f64 ends)
     let iters = 200.max((-I::epsilon().log2()) as usize + 80);
-    let t1 = point::<I>(t1);
+    let t1 = point::<I>(t1f);
     let below = |u: &I| (t.eval(u) - t1.clone()).hi() < 0.0;
     let above = |u: &I| (t.eval(u) - t1.clone()).lo() > 0.0;
     let mid = |a: &I, b: &I| -> Option<I> {
         let m = a.hull(b).mid_point();
         (!m.same(a) && !m.same(b)).then_some(m)
     };
-    // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi
-    let (mut lo, mut hi) = (I::zero(), point::<I>(delta));
+    // u_lo: t(u) < t1 surely for u ≤ u_lo; u_hi: t(u) > t1 surely for u ≥ u_hi (δ: the caller
+    // has t(δ) > t1; 0: t(0) < t1)
+    let (mut lo, mut upper) = (I::zero(), point::<I>(delta));
+    if let Some((a, b)) = hint {
+        let (pa, pb) = (point::<I>(a), point::<I>(b));
+        if below(&pa) && above(&pb) {
+            (lo, upper) = (pa, pb);
+        }
+    }
+    // (the first bisection moves its upper end to where t < t1 is merely not sure: the
+    // second starts again from `upper`)
+    let mut hi = upper.clone();
     for _ in 0..iters {
         let Some(m) = mid(&lo, &hi) else { break };
         if below(&m) {
@@ -467,7 +494,7 @@ pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> O
             hi = m;
         }
     }
-    let (mut lo2, mut hi2) = (lo.clone(), point::<I>(delta));
+    let (mut lo2, mut hi2) = (lo.clone(), upper);
     for _ in 0..iters {
         let Some(m) = mid(&lo2, &hi2) else { break };
         if above(&m) {
@@ -477,6 +504,34 @@ pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> O
         }
     }
     ((hi2.clone() - lo.clone()).lo() >= 0.0).then(|| lo.hull(&hi2))
+}
+
+/// A bracket (a, b) ⊂ (0, δ) of exact doubles around the estimated u with t(u) = t1 (see
+/// [`exit_parameter`]; nothing here is proved): Newton's method on the midpoint expansion from
+/// the secant over [0, δ], then a margin of the larger of 64 ulps and 4× t's width over its
+/// slope. `None` when the estimate fails (a flat or non-finite slope).
+fn exit_guess<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> Option<(f64, f64)> {
+    let t0 = t.c0().mid();
+    let (td, _) = t.mid_value_slope(delta);
+    let mut u = delta * (t1 - t0) / (td - t0);
+    for _ in 0..8 {
+        if !(u > 0.0 && u < delta) {
+            return None;
+        }
+        let (v, d) = t.mid_value_slope(u);
+        if !(d > 0.0 && d.is_finite()) {
+            return None;
+        }
+        u -= (v - t1) / d;
+    }
+    if !(u > 0.0 && u < delta) {
+        return None;
+    }
+    let (_, d) = t.mid_value_slope(u);
+    let w = t.eval(&I::from_exact_f64(u)).wid_f64();
+    let r = (64.0 * u * f64::EPSILON).max(4.0 * w / d);
+    let (a, b) = (u - r, u + r);
+    (a > 0.0 && b < delta && r.is_finite()).then_some((a, b))
 }
 
 /// A step across the zero of component `w` from the set at t0 (the parallelepiped `rep`, or

@@ -66,6 +66,9 @@ pub struct Basis<I = Interval> {
     sum: Vec<u16>,
     /// index of keys[i] + (1, 0, …): the exponent of the integral
     plus_one: Vec<u16>,
+    /// (index of the key with one count of generator j fewer, j) per key: u^α of key i is
+    /// u^α of its parent times u^(g_j) ([`Ctx::powers`]); (0, 0) for the constant.
+    parent: Vec<(u16, u8)>,
 }
 
 impl<I: Enclosure> Basis<I> {
@@ -138,6 +141,19 @@ impl<I: Enclosure> Basis<I> {
             })
             .collect();
         let exps = keys.iter().map(exponent).collect();
+        // the parent of a key (its last nonzero count lowered by one) is a key too (its
+        // exponent is smaller: every generator is > 0) and sorts before it
+        let parent = keys
+            .iter()
+            .map(|k| match k.iter().rposition(|&c| c > 0) {
+                Some(j) => {
+                    let mut k1 = *k;
+                    k1[j] -= 1;
+                    (index(&k1), j as u8)
+                }
+                None => (0, 0),
+            })
+            .collect();
         Some(Arc::new(Self {
             gens: g,
             max_exp,
@@ -145,6 +161,7 @@ impl<I: Enclosure> Basis<I> {
             exps,
             sum,
             plus_one,
+            parent,
         }))
     }
 
@@ -158,6 +175,12 @@ impl<I: Enclosure> Basis<I> {
         let mut k = [0u8; MAX_GENS];
         k[j] = 1;
         self.keys.binary_search(&k).map_or(BEYOND, |i| i as u16)
+    }
+
+    /// The exponents as counts of the generators, sorted (index 0: the constant).
+    #[cfg(test)]
+    pub(crate) fn keys(&self) -> &[Key] {
+        &self.keys
     }
 
     /// The generators other than g₀ = 1.
@@ -222,17 +245,38 @@ impl<I: Enclosure> Ctx<I> {
         self.delta
     }
 
-    /// u^α of key i for u ⊆ [0, ∞) (1 for the constant).
-    fn upow(&self, i: u16, u: &I) -> I {
-        let a = &self.basis.exps[i as usize];
-        if a.hi() == 0.0 {
-            return I::one();
-        }
+    /// u^α of the keys 0..=`last` for u ⊆ [0, ∞) (1 for the constant): u^(g_j) once per
+    /// generator, then each key's power as its parent's times one generator's
+    /// ([`Basis::parent`]). Every factor is ≥ 0 and increasing in u, so each product encloses
+    /// u^(α_parent + g_j) = u^α for every u of the interval (no dependency is lost); a key of
+    /// total degree d carries d products' roundings and d generator powers' widths instead of
+    /// one power's (≤ 70 ulps measured, at α ≈ 6: negligible against the coefficients'
+    /// widths), and costs one product instead of a power.
+    pub(crate) fn powers(&self, u: &I, last: usize) -> Vec<I> {
+        let b = &self.basis;
         let u = u.nonneg();
+        let n = (last + 1).min(b.keys.len());
         if u.hi() == 0.0 {
-            return I::zero();
+            return (0..n)
+                .map(|i| if i == 0 { I::one() } else { I::zero() })
+                .collect();
         }
-        Real::pow(&u, a)
+        let g: Vec<I> = b
+            .gens
+            .iter()
+            .enumerate()
+            .map(|(j, gj)| if j == 0 { u.clone() } else { Real::pow(&u, gj) })
+            .collect();
+        let mut p: Vec<I> = Vec::with_capacity(n);
+        for i in 0..n {
+            let (par, j) = b.parent[i];
+            p.push(if i == 0 {
+                I::one()
+            } else {
+                p[par as usize].clone() * g[j as usize].clone()
+            });
+        }
+        p
     }
 }
 
@@ -356,14 +400,38 @@ impl<I: Enclosure> Gts<I> {
 
     /// The value at u ∈ `u` (an interval inside the domain), summed as [`Gts::poly_range`].
     pub fn eval(&self, u: &I) -> I {
+        let p = match (&self.ctx, self.terms.last()) {
+            (Some(ctx), Some((last, _))) => ctx.powers(u, *last as usize),
+            _ => Vec::new(),
+        };
         let mut r = I::zero();
         for (i, c) in self.terms.iter().rev() {
             r = r + match &self.ctx {
-                Some(ctx) => c.clone() * ctx.upow(*i, u),
+                Some(_) => c.clone() * p[*i as usize].clone(),
                 None => c.clone(),
             };
         }
         r + self.rem.clone()
+    }
+
+    /// The value and the derivative in u of the midpoint expansion (midpoint coefficients
+    /// and exponents, the remainder's midpoint) at a double u > 0, in f64: an estimate, for
+    /// choosing where the rigorous evaluations look ([`super::exit_parameter`]).
+    pub fn mid_value_slope(&self, u: f64) -> (f64, f64) {
+        let (mut v, mut d) = (self.rem.mid(), 0.0);
+        for (i, c) in &self.terms {
+            let c = c.mid();
+            match &self.ctx {
+                Some(ctx) if *i != 0 => {
+                    let a = ctx.basis.exps[*i as usize].mid();
+                    let ua = u.powf(a);
+                    v += c * ua;
+                    d += c * a * ua / u;
+                }
+                _ => v += c,
+            }
+        }
+        (v, d)
     }
 
     /// ∫₀^u of the value (see the module's documentation).
@@ -817,6 +885,18 @@ impl<I: Enclosure> Real for Gts<I> {
             Some(1) if q.is_const() => self.analytic_pow(q.c0()),
             Some(-1) if q.is_const() => -((-self.clone()).analytic_pow(q.c0())),
             _ => Self::unbounded(),
+        }
+    }
+    /// The pair's other power from `other`: for x of a certain sign s (±u, s·u·W with W > 0,
+    /// or a value of one sign) |x|^(q−1)x = s·|x|^q exactly, so one series serves both (at a
+    /// crossing of Z, |X|^p and |X|^(p−1)X took two binomial series of 7 products each);
+    /// otherwise anew.
+    fn twin_pow(&self, q: &Self, other: &Self, signed: bool) -> Self {
+        match self.certain_sign() {
+            Some(1) if q.is_const() => other.clone(),
+            Some(-1) if q.is_const() => -other.clone(),
+            _ if signed => self.spow(q),
+            _ => self.apow(q),
         }
     }
     /// |x|^q: u^q for x = ±u; (s x)^q for x of one sign s.

@@ -294,3 +294,122 @@ fn the_start_step_keeps_the_invariants_of_a_coupled_pair() {
         check_start_pair::<M>(p, 0.5 * d);
     }
 }
+
+/// t(u) = t₀ + c·u + d·u^1.5 on [0, δ] with interval coefficients (a band of functions): the
+/// exit bracket must hold every u where a function of the band meets t1 — from the estimate,
+/// from a hint that misses u* (its ends fail the checks: the bisection starts from [0, δ]),
+/// and from none — and the estimate's bracket is as tight as the plain bisection's.
+#[test]
+fn the_exit_bracket_holds_every_crossing_of_the_band() {
+    let basis = Basis::<Interval>::new(&[iv::<Interval>(1.5, 1.5)], 4.0).unwrap();
+    let delta = 1e-3;
+    let ctx = Ctx::new(&basis, delta).unwrap();
+    let u = Gts::variable(&ctx, 1);
+    let u15 = Real::apow(&u, &Gts::constant(iv(1.5, 1.5)));
+    let (c, d) = (iv::<Interval>(0.9, 1.1), iv::<Interval>(2.0, 3.0));
+    let t = Gts::constant_in(&ctx, iv(2.0, 2.0))
+        + u.clone() * Gts::constant(c)
+        + u15 * Gts::constant(d);
+    let t1 = 2.0 + 5e-4;
+    // the band's crossings: the smallest u from the largest coefficients and vice versa
+    let solve = |c: f64, d: f64| {
+        let (mut a, mut b) = (0.0_f64, delta);
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if c * m + d * m.powf(1.5) < 5e-4 {
+                a = m
+            } else {
+                b = m
+            }
+        }
+        (a, b)
+    };
+    let (first, _) = solve(1.1, 3.0);
+    let (_, last) = solve(0.9, 2.0);
+    let plain = exit_parameter_from(&t, t1, delta, None).unwrap();
+    for (what, hint) in [
+        ("estimate", exit_guess(&t, t1, delta)),
+        ("missing hint", Some((0.8 * delta, 0.9 * delta))),
+        ("none", None),
+    ] {
+        let b = exit_parameter_from(&t, t1, delta, hint).unwrap();
+        assert!(
+            b.inf() <= first && last <= b.sup(),
+            "{what}: {b:?} ⊉ [{first}, {last}]"
+        );
+        assert!(
+            b.wid() <= 1.01 * plain.wid(),
+            "{what}: {b:?} wider than {plain:?}"
+        );
+    }
+    assert!(
+        exit_guess(&t, t1, delta).is_some(),
+        "the estimate is used here"
+    );
+}
+
+/// u^α by the basis' table of powers ([`Ctx::powers`]) holds u^α computed with MPFR at 200 bits,
+/// for points and intervals of u, and is ≤ 128 ulps wide at a point (measured ≤ 70, at α ≈ 6).
+#[test]
+fn the_table_of_powers_holds_every_power() {
+    let basis = Basis::<Interval>::new(&[iv::<Interval>(1.5, 1.5), iv(1.25, 1.25)], 6.0).unwrap();
+    let ctx = Ctx::new(&basis, 1e-2).unwrap();
+    let keys = basis.keys().to_vec();
+    let alpha = |k: &super::puiseux::Key| k[0] as f64 + 1.5 * k[1] as f64 + 1.25 * k[2] as f64;
+    for (a, b) in [(3e-3, 3e-3), (1e-3, 4e-3), (0.0, 1e-2), (7.5e-3, 7.5e-3)] {
+        let u = iv::<Interval>(a, b);
+        let p = ctx.powers(&u, keys.len() - 1);
+        assert_eq!(p.len(), keys.len());
+        for (i, k) in keys.iter().enumerate() {
+            let al = alpha(k);
+            for x in [a, b] {
+                let exact = Float::with_val(200, x).pow(Float::with_val(200, al));
+                assert!(
+                    exact >= p[i].inf() && exact <= p[i].sup(),
+                    "u = [{a}, {b}], α = {al}: {:?} ∌ {x}^{al}",
+                    p[i]
+                );
+            }
+            if a == b {
+                // (a key of degree d: d products of powers a few ulps wide each)
+                assert!(
+                    p[i].wid() <= 128.0 * f64::EPSILON * p[i].sup(),
+                    "{:?}",
+                    p[i]
+                );
+            }
+        }
+    }
+}
+
+/// The twin of a power (|x|^(q−1)x from |x|^q and the reverse) on generalized polynomials of a
+/// certain sign equals the power computed anew, for both signs; of an uncertain sign it is
+/// computed anew (unbounded here, as the power itself).
+#[test]
+fn twin_powers_equal_the_powers() {
+    let basis = Basis::<Interval>::new(&[iv::<Interval>(1.5, 1.5)], 4.0).unwrap();
+    let ctx = Ctx::new(&basis, 1e-2).unwrap();
+    let q = Gts::constant(iv::<Interval>(1.27, 1.27));
+    for x0 in [-0.5, 0.5] {
+        let x = Gts::constant_in(&ctx, iv(x0, x0)) + Gts::variable(&ctx, 1);
+        let (s, a) = (Real::spow(&x, &q), Real::apow(&x, &q));
+        let (ts, ta) = (
+            Real::twin_pow(&x, &q, &a, true),
+            Real::twin_pow(&x, &q, &s, false),
+        );
+        for (twin, direct) in [(&ts, &s), (&ta, &a)] {
+            assert_eq!(twin.terms().len(), direct.terms().len());
+            for ((_, c1), (_, c2)) in twin.terms().iter().zip(direct.terms()) {
+                assert!(
+                    c1.inf() == c2.inf() && c1.sup() == c2.sup(),
+                    "x0 {x0}: {c1:?} {c2:?}"
+                );
+            }
+            assert_eq!(twin.remainder(), direct.remainder());
+        }
+    }
+    // across 0: no certain sign, computed anew
+    let x = Gts::constant_in(&ctx, iv(-1e-3, 1e-3)) + Gts::variable(&ctx, 1);
+    let a = Real::apow(&x, &q);
+    assert!(!Real::twin_pow(&x, &q, &a, true).is_bounded());
+}
