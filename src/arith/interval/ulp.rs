@@ -217,7 +217,67 @@ impl Mul for Ulp {
         } else {
             None
         };
-        corners(self, o, pairs, mul_dir)
+        match pairs {
+            Some((lo, hi)) => pair_dir(lo, hi, false),
+            None => corners(self, o, None, mul_dir),
+        }
+    }
+}
+
+/// The case-table result of a product (`div = false`) or quotient: the lower end lo.0 ∘ lo.1
+/// rounded down and the upper end hi.0 ∘ hi.1 rounded up. When both are in the common case of
+/// [`mul_dir`] / [`div_dir`] (result in [2^−969, MAX], for a quotient also |dividend| ≥ 2^−969
+/// and a finite divisor) both ends take one vector product or division and one fused residual:
+/// the same nearest p, the same exact residual r and the same step as those functions (the
+/// exact value lies above p when r > 0 for a product, when r/b > 0 for a quotient a/b), so bit
+/// for bit their results; otherwise those functions themselves.
+#[inline(always)]
+fn pair_dir(lo: (f64, f64), hi: (f64, f64), div: bool) -> Ulp {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: the intrinsics need SSE2 and FMA, which the cfg above guarantees at compile
+        // time; they only read and write registers.
+        let (p0, p1, r0, r1) = unsafe {
+            let x = _mm_setr_pd(lo.0, hi.0);
+            let y = _mm_setr_pd(lo.1, hi.1);
+            let (p, r) = if div {
+                let q = _mm_div_pd(x, y);
+                (q, _mm_fnmadd_pd(q, y, x))
+            } else {
+                let p = _mm_mul_pd(x, y);
+                (p, _mm_fmsub_pd(x, y, p))
+            };
+            let high = |v: __m128d| _mm_cvtsd_f64(_mm_unpackhi_pd(v, v));
+            (_mm_cvtsd_f64(p), high(p), _mm_cvtsd_f64(r), high(r))
+        };
+        let normal = |p: f64| (RESIDUAL_EXACT..=f64::MAX).contains(&p.abs());
+        let common = normal(p0)
+            && normal(p1)
+            && (!div
+                || (lo.0.abs() >= RESIDUAL_EXACT
+                    && hi.0.abs() >= RESIDUAL_EXACT
+                    && lo.1.is_finite()
+                    && hi.1.is_finite()));
+        if common {
+            let (below, above) = if div {
+                (
+                    r0 != 0.0 && (r0 < 0.0) == (lo.1 > 0.0),
+                    r1 != 0.0 && (r1 > 0.0) == (hi.1 > 0.0),
+                )
+            } else {
+                (r0 < 0.0, r1 > 0.0)
+            };
+            return Ulp {
+                lo: if below { step(p0, false) } else { p0 },
+                hi: if above { step(p1, true) } else { p1 },
+            };
+        }
+    }
+    let op = if div { div_dir } else { mul_dir };
+    Ulp {
+        lo: op(lo.0, lo.1, false),
+        hi: op(hi.0, hi.1, true),
     }
 }
 
@@ -285,7 +345,10 @@ impl Div for Ulp {
             (_, true, false) => Some(((b, c), (a, d))),
             _ => None,
         };
-        corners(self, o, pairs, div_dir)
+        match pairs {
+            Some((lo, hi)) => pair_dir(lo, hi, true),
+            None => corners(self, o, None, div_dir),
+        }
     }
 }
 
@@ -620,6 +683,70 @@ mod tests {
             seen_across > 100_000 && equal > 390_000,
             "{seen_across} {equal}"
         );
+    }
+
+    /// The two-ended vector route of the case tables ([`pair_dir`]) gives bit for bit the ends
+    /// of the scalar directed operations [`mul_dir`] and [`div_dir`], on operands of every
+    /// kind (±0, ±∞, subnormal, tiny, huge, ±MAX, both signs; divisors non-zero).
+    #[test]
+    fn pair_route_equals_the_scalar_directed_operations() {
+        let mut seed = 0xbb67ae8584caa73b_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [
+            0.0,
+            f64::INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            RESIDUAL_EXACT,
+            1e-160,
+            1.0,
+            3.0,
+        ];
+        let float = move |r: u64| -> f64 {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let x = match r % 4 {
+                0 => special[(r >> 8) as usize % special.len()],
+                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
+                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
+            };
+            if r & 4 != 0 { -x } else { x }
+        };
+        let mut vector = 0;
+        for _ in 0..500_000 {
+            let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
+            let m = pair_dir((a, b), (c, d), false);
+            assert_eq!(
+                (m.lo.to_bits(), m.hi.to_bits()),
+                (
+                    mul_dir(a, b, false).to_bits(),
+                    mul_dir(c, d, true).to_bits()
+                ),
+                "{a:e}·{b:e}, {c:e}·{d:e}"
+            );
+            if b != 0.0 && d != 0.0 {
+                let q = pair_dir((a, b), (c, d), true);
+                let (lo, hi) = (div_dir(a, b, false), div_dir(c, d, true));
+                assert!(
+                    (q.lo.to_bits(), q.hi.to_bits()) == (lo.to_bits(), hi.to_bits())
+                        || (q.lo.is_nan() && lo.is_nan())
+                        || (q.hi.is_nan() && hi.is_nan()),
+                    "{a:e}/{b:e} → {:e} vs {lo:e}, {c:e}/{d:e} → {:e} vs {hi:e}",
+                    q.lo,
+                    q.hi
+                );
+                let fin = |x: f64| (RESIDUAL_EXACT..=f64::MAX).contains(&x.abs());
+                if fin(a / b) && fin(c / d) && fin(a) && fin(c) && fin(b) && fin(d) {
+                    vector += 1;
+                }
+            }
+        }
+        assert!(vector > 100_000, "{vector}");
     }
 
     /// A result that overflows is bounded on its finite side by ±MAX, not by ±∞ (an upper end
