@@ -885,11 +885,7 @@ mod tests {
                 if r.lo.is_finite() && r.hi.is_finite() && x.lo.is_finite() && x.hi.is_finite() {
                     let kq = Rational::from(k);
                     let f = |v: f64| {
-                        if div {
-                            Rational::from(q(v) / &kq)
-                        } else {
-                            Rational::from(q(v) * &kq)
-                        }
+                        if div { q(v) / &kq } else { q(v) * &kq }
                     };
                     let (u, v) = (f(x.lo), f(x.hi));
                     let (lo, hi) = if k > 0 { (u, v) } else { (v, u) };
