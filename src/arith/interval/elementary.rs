@@ -14,6 +14,7 @@
 //! | x^q, x ≥ 0, q > 0 | x^q = exp(q · ln x) over the boxes (q·ln x over a box is the exact range of the product) | | relative width ≈ (\|q ln x\| + a few) ulps |
 
 use super::ulp::Ulp;
+use crate::arith::Real;
 use inari::{Interval, const_interval};
 use std::sync::OnceLock;
 
@@ -258,13 +259,51 @@ pub fn ln(x: Interval) -> Interval {
     }
     let lo = ln_point(x.inf());
     // a thin X: ln(x.sup) = ln(x.inf) + ln(1 + u) ≤ ln(x.inf) + u, u = (x.sup − x.inf)/x.inf
-    let u = (pt(x.sup()) - pt(x.inf())) / pt(x.inf());
+    let u = div_as_inari(sub_as_inari(pt(x.sup()), pt(x.inf())), pt(x.inf()));
     let hi = if u.sup() < 1e-3 {
-        (lo + u).sup()
+        (Ulp::of(lo) + Ulp::of(u)).hi
     } else {
         ln_point(x.sup()).sup()
     };
     Interval::try_from((lo.inf(), hi)).unwrap()
+}
+
+/// x − y for non-empty x, y in [`Ulp`] arithmetic (no rounding-mode switches): TwoSum gives the
+/// exact error of each end, so the ends are inari's directed roundings bit for bit (test
+/// `operations_enclose_the_exact_results` of [`super::ulp`] compares them).
+#[inline]
+fn sub_as_inari(x: Interval, y: Interval) -> Interval {
+    (Ulp::of(x) - Ulp::of(y)).interval()
+}
+
+/// x/y for non-empty x, y in [`Ulp`] arithmetic where that is inari's quotient bit for bit,
+/// else inari's. Accepted when x and y each have one sign (the case table: each end one
+/// directed quotient), y is bounded, both ends of x are 0 or ≥ 2^−969 in magnitude and both
+/// result ends lie strictly between 2^−969 and MAX in magnitude: then each end's nearest
+/// quotient q has |q| ≥ 2^−969 and is finite, with a non-zero dividend ≥ 2^−969, the case in
+/// which the residual a − q·b is exact and its sign decides the directed rounding exactly as
+/// inari's rounding mode does (test `quotients_as_inari_equal_inaris`).
+#[inline]
+fn div_as_inari(x: Interval, y: Interval) -> Interval {
+    use super::ulp::RESIDUAL_EXACT;
+    let one_sign = |v: Interval| v.inf() >= 0.0 || v.sup() <= 0.0;
+    let dividend = |a: f64| a == 0.0 || a.abs() >= RESIDUAL_EXACT;
+    if !x.is_empty()
+        && !y.is_empty()
+        && one_sign(x)
+        && (y.inf() > 0.0 || y.sup() < 0.0)
+        && y.inf().is_finite()
+        && y.sup().is_finite()
+        && dividend(x.inf())
+        && dividend(x.sup())
+    {
+        let r = Ulp::of(x) / Ulp::of(y);
+        let normal = |e: f64| e.abs() > RESIDUAL_EXACT && e.abs() < f64::MAX;
+        if normal(r.lo) && normal(r.hi) {
+            return r.interval();
+        }
+    }
+    x / y
 }
 
 /// An enclosure of e^Y.
@@ -277,9 +316,9 @@ pub fn exp(y: Interval) -> Interval {
     }
     let lo = exp_point(y.inf());
     // a thin Y: e^(y.sup) = e^(y.inf)·e^d ≤ e^(y.inf)/(1 − d), d = y.sup − y.inf < 1
-    let d = pt(y.sup()) - pt(y.inf());
+    let d = sub_as_inari(pt(y.sup()), pt(y.inf()));
     let hi = if d.sup() < 1e-3 {
-        (lo / (ONE - d)).sup()
+        div_as_inari(lo, sub_as_inari(ONE, d)).sup()
     } else {
         exp_point(y.sup()).sup()
     };
@@ -303,10 +342,11 @@ pub fn pow(x: Interval, q: Interval) -> Option<Interval> {
     }
     if x.inf() == 0.0 {
         // 0 ≤ x^q ≤ sup: the largest value is at x.sup, with q at the end that maximizes it
-        let hi = exp(q * ln(pt(x.sup()))).sup();
+        let hi = exp(q.mul_constant(&ln(pt(x.sup())))).sup();
         return Some(Interval::try_from((0.0, hi)).unwrap());
     }
-    Some(exp(q * ln(x)))
+    // q·ln x by the fast product, bit for bit inari's (no rounding-mode switches)
+    Some(exp(q.mul_constant(&ln(x))))
 }
 
 #[cfg(test)]
@@ -319,6 +359,61 @@ mod tests {
 
     fn contains_exact(i: Interval, exact: &Float) -> bool {
         Float::with_val(PREC, i.inf()) <= *exact && *exact <= Float::with_val(PREC, i.sup())
+    }
+
+    /// [`sub_as_inari`] and [`div_as_inari`] are inari's `−` and `/` bit for bit, on ends of
+    /// every kind (±0, ±∞, subnormal, tiny, huge, ±MAX, across 0), the Ulp route taken in most
+    /// of them.
+    #[test]
+    fn quotients_as_inari_equal_inaris() {
+        let mut seed = 0xa54ff53a5f1d36f1_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [
+            0.0,
+            f64::INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            super::super::ulp::RESIDUAL_EXACT,
+            1e-160,
+            1.0,
+        ];
+        let float = move |r: u64| -> f64 {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let x = match r % 4 {
+                0 => special[(r >> 8) as usize % special.len()],
+                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
+                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
+            };
+            if r & 4 != 0 { -x } else { x }
+        };
+        let same = |a: Interval, b: Interval| {
+            a.is_empty() == b.is_empty()
+                && (a.is_empty() || (a.inf() == b.inf() && a.sup() == b.sup()))
+        };
+        let mut fast = 0;
+        for _ in 0..400_000 {
+            let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
+            let (Ok(x), Ok(y)) = (
+                Interval::try_from((a.min(b), a.max(b))),
+                Interval::try_from((c.min(d), c.max(d))),
+            ) else {
+                continue;
+            };
+            assert!(same(sub_as_inari(x, y), x - y), "{x:?} − {y:?}");
+            let q = div_as_inari(x, y);
+            assert!(same(q, x / y), "{x:?} / {y:?}: {q:?} vs {:?}", x / y);
+            let r = Ulp::of(x) / Ulp::of(y);
+            if r.lo.abs() > 1e-200 && r.hi.abs() < 1e200 && (x.inf() >= 0.0 || x.sup() <= 0.0) {
+                fast += 1;
+            }
+        }
+        assert!(fast > 40_000, "{fast}");
     }
 
     #[test]

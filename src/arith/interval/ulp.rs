@@ -179,19 +179,105 @@ impl Neg for Ulp {
 
 impl Mul for Ulp {
     type Output = Self;
-    /// The classic case table when both factors have a certain sign (two products), else
-    /// [min, max] of the four endpoint products; each product rounded in its direction.
+    /// Two products whenever one factor has a certain sign (the classic case table, extended
+    /// to a factor across 0), else [min, max] of the four endpoint products; each product
+    /// rounded in its direction.
+    ///
+    /// For y = [c, d] ≥ 0 the product x·y is increasing in x for every y, so its lower end
+    /// is a·y at the best y: a·c for a ≥ 0, a·d for a < 0 (whatever the sign of b), and its
+    /// upper end b·d for b ≥ 0, b·c for b < 0; y ≤ 0 and x of a certain sign are the mirror
+    /// cases. The chosen pair is the exact minimum (maximum) of the four endpoint products,
+    /// and directed rounding is monotone (for `mul_dir`, whose products below 2^−969 are
+    /// stepped out unconditionally, too: such a product lies strictly between −2^−969 and
+    /// 2^−969, beyond every rounded product outside that range), so the result equals the
+    /// [min, max] of the four rounded products: the same enclosure in two products instead
+    /// of eight (test `sign_table_equals_the_four_corners`). A product of a jet by a tape
+    /// constant of one sign (κ, σ, q) or by the step [0, h] always takes this path.
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
-        let pairs = match (a >= 0.0, b <= 0.0, c >= 0.0, d <= 0.0) {
-            (true, _, true, _) => Some(((a, c), (b, d))),
-            (true, _, _, true) => Some(((b, c), (a, d))),
-            (_, true, true, _) => Some(((a, d), (b, c))),
-            (_, true, _, true) => Some(((b, d), (a, c))),
-            _ => None,
+        let pairs = if c >= 0.0 {
+            // y ≥ 0
+            Some((
+                (a, if a >= 0.0 { c } else { d }),
+                (b, if b >= 0.0 { d } else { c }),
+            ))
+        } else if d <= 0.0 {
+            // y ≤ 0: lower end b·y at the best y, upper end a·y
+            Some((
+                (b, if b >= 0.0 { c } else { d }),
+                (a, if a >= 0.0 { d } else { c }),
+            ))
+        } else if a >= 0.0 {
+            // x ≥ 0, y across 0: [b·c, b·d]
+            Some(((b, c), (b, d)))
+        } else if b <= 0.0 {
+            // x ≤ 0, y across 0: [a·d, a·c]
+            Some(((a, d), (a, c)))
+        } else {
+            None
         };
-        corners(self, o, pairs, mul_dir)
+        match pairs {
+            Some((lo, hi)) => pair_dir(lo, hi, false),
+            None => corners(self, o, None, mul_dir),
+        }
+    }
+}
+
+/// The case-table result of a product (`div = false`) or quotient: the lower end lo.0 ∘ lo.1
+/// rounded down and the upper end hi.0 ∘ hi.1 rounded up. When both are in the common case of
+/// [`mul_dir`] / [`div_dir`] (result in [2^−969, MAX], for a quotient also |dividend| ≥ 2^−969
+/// and a finite divisor) both ends take one vector product or division and one fused residual:
+/// the same nearest p, the same exact residual r and the same step as those functions (the
+/// exact value lies above p when r > 0 for a product, when r/b > 0 for a quotient a/b), so bit
+/// for bit their results; otherwise those functions themselves.
+#[inline(always)]
+fn pair_dir(lo: (f64, f64), hi: (f64, f64), div: bool) -> Ulp {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: the intrinsics need SSE2 and FMA, which the cfg above guarantees at compile
+        // time; they only read and write registers.
+        let (p0, p1, r0, r1) = unsafe {
+            let x = _mm_setr_pd(lo.0, hi.0);
+            let y = _mm_setr_pd(lo.1, hi.1);
+            let (p, r) = if div {
+                let q = _mm_div_pd(x, y);
+                (q, _mm_fnmadd_pd(q, y, x))
+            } else {
+                let p = _mm_mul_pd(x, y);
+                (p, _mm_fmsub_pd(x, y, p))
+            };
+            let high = |v: __m128d| _mm_cvtsd_f64(_mm_unpackhi_pd(v, v));
+            (_mm_cvtsd_f64(p), high(p), _mm_cvtsd_f64(r), high(r))
+        };
+        let normal = |p: f64| (RESIDUAL_EXACT..=f64::MAX).contains(&p.abs());
+        let common = normal(p0)
+            && normal(p1)
+            && (!div
+                || (lo.0.abs() >= RESIDUAL_EXACT
+                    && hi.0.abs() >= RESIDUAL_EXACT
+                    && lo.1.is_finite()
+                    && hi.1.is_finite()));
+        if common {
+            let (below, above) = if div {
+                (
+                    r0 != 0.0 && (r0 < 0.0) == (lo.1 > 0.0),
+                    r1 != 0.0 && (r1 > 0.0) == (hi.1 > 0.0),
+                )
+            } else {
+                (r0 < 0.0, r1 > 0.0)
+            };
+            return Ulp {
+                lo: if below { step(p0, false) } else { p0 },
+                hi: if above { step(p1, true) } else { p1 },
+            };
+        }
+    }
+    let op = if div { div_dir } else { mul_dir };
+    Ulp {
+        lo: op(lo.0, lo.1, false),
+        hi: op(hi.0, hi.1, true),
     }
 }
 
@@ -259,7 +345,10 @@ impl Div for Ulp {
             (_, true, false) => Some(((b, c), (a, d))),
             _ => None,
         };
-        corners(self, o, pairs, div_dir)
+        match pairs {
+            Some((lo, hi)) => pair_dir(lo, hi, true),
+            None => corners(self, o, None, div_dir),
+        }
     }
 }
 
@@ -277,12 +366,79 @@ impl Ulp {
         } else {
             (self.hi, self.lo)
         };
+        if let Some(r) = int_op_common(a, b, kf, div) {
+            return r;
+        }
         match (int_op_bounds(a, kf, div), int_op_bounds(b, kf, div)) {
             (Some((lo, _)), Some((_, hi))) => Self { lo, hi },
             _ => {
                 let ki = Self::point(kf);
                 if div { self / ki } else { self * ki }
             }
+        }
+    }
+}
+
+/// [`Ulp::int_op`] in the common case, both nearest results p finite with |p| ≥ 2^−969 (so
+/// both ends finite and non-zero): the same bounds as [`int_op_bounds`] on each end (the same
+/// p, the same exact residual, the same step), with both ends in one vector division (or
+/// product) and one fused residual; `None` otherwise. For |k| a power of two the quotient is
+/// x·(1/k) with 1/k exact: the correct rounding of the same real number x/k, bit for bit the
+/// quotient, without the division's latency. Measured on the rigorous engine (division by the
+/// order k in every power and solution coefficient): see the commit introducing it.
+#[inline(always)]
+fn int_op_common(a: f64, b: f64, k: f64, div: bool) -> Option<Ulp> {
+    let (pa, pb, ra, rb) = int_op_pair(a, b, k, div);
+    let normal = |p: f64| (RESIDUAL_EXACT..=f64::MAX).contains(&p.abs());
+    if !(normal(pa) && normal(pb)) {
+        return None;
+    }
+    // sign of (exact − p): for a product x·k − p; for a quotient (x − p·k)/k
+    let s = if div { k.signum() } else { 1.0 };
+    Some(Ulp {
+        lo: if ra * s < 0.0 { pa.next_down() } else { pa },
+        hi: if rb * s > 0.0 { pb.next_up() } else { pb },
+    })
+}
+
+/// (p_a, p_b, r_a, r_b): the nearest p = x·k (`div`: x/k) of x = a and x = b, and the residuals
+/// x·k − p (`div`: x − p·k), each one rounding of the exact residual (exact where
+/// [`int_op_common`] uses them).
+#[inline(always)]
+fn int_op_pair(a: f64, b: f64, k: f64, div: bool) -> (f64, f64, f64, f64) {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: the intrinsics need SSE2 and FMA, which the cfg above guarantees at compile
+        // time; they only read and write registers.
+        unsafe {
+            let x = _mm_setr_pd(a, b);
+            let kk = _mm_set1_pd(k);
+            let (p, r) = if div {
+                let m = k.abs().to_bits() & ((1u64 << 52) - 1) == 0;
+                let p = if m && k.abs() <= 2f64.powi(60) {
+                    // 1/k exact (k = ±2^j, j ≤ 60)
+                    _mm_mul_pd(x, _mm_set1_pd(1.0 / k))
+                } else {
+                    _mm_div_pd(x, kk)
+                };
+                (p, _mm_fnmadd_pd(p, kk, x))
+            } else {
+                let p = _mm_mul_pd(x, kk);
+                (p, _mm_fmsub_pd(x, kk, p))
+            };
+            let hi = |v: __m128d| _mm_cvtsd_f64(_mm_unpackhi_pd(v, v));
+            (_mm_cvtsd_f64(p), hi(p), _mm_cvtsd_f64(r), hi(r))
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+    {
+        if div {
+            let (pa, pb) = (a / k, b / k);
+            (pa, pb, (-pa).mul_add(k, a), (-pb).mul_add(k, b))
+        } else {
+            let (pa, pb) = (a * k, b * k);
+            (pa, pb, a.mul_add(k, -pa), b.mul_add(k, -pb))
         }
     }
 }
@@ -448,6 +604,151 @@ mod tests {
         assert!(contains(c, &t3, &t3), "{c:?}");
     }
 
+    /// The product's sign table (two products when one factor has a certain sign) equals the
+    /// [min, max] of the four rounded endpoint products, on endpoints of every kind: both
+    /// signs, ±0, ±∞, subnormal, tiny and huge, thin and wide, across 0. The only allowed
+    /// difference: where a corner's rounded product lies below 2^−969 (stepped out without a
+    /// residual) the table may be narrower (it skips a corner that is not the exact extreme),
+    /// never wider.
+    #[test]
+    fn sign_table_equals_the_four_corners() {
+        let mut seed = 0x2545f4914f6cdd1d_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            1.0,
+            RESIDUAL_EXACT,
+            1e-160,
+        ];
+        let float = move |r: u64| -> f64 {
+            let x = match r % 4 {
+                0 => special[(r >> 8) as usize % special.len()],
+                1 => {
+                    let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+                    m * 2f64.powi((r >> 3) as i32 % 2098 - 1075)
+                }
+                _ => {
+                    let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+                    m * 2f64.powi((r >> 3) as i32 % 40 - 20)
+                }
+            };
+            if r & 4 != 0 { -x } else { x }
+        };
+        let four = |x: Ulp, y: Ulp| corners(x, y, None, mul_dir);
+        let tiny = |x: Ulp, y: Ulp| {
+            [(x.lo, y.lo), (x.lo, y.hi), (x.hi, y.lo), (x.hi, y.hi)]
+                .iter()
+                .any(|&(u, v)| u != 0.0 && v != 0.0 && (u * v).abs() < RESIDUAL_EXACT)
+        };
+        let (mut seen_across, mut equal) = (0, 0);
+        for _ in 0..400_000 {
+            let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
+            let x = Ulp {
+                lo: a.min(b),
+                hi: a.max(b),
+            };
+            let y = if next() % 4 == 0 {
+                Ulp::point(c)
+            } else {
+                Ulp {
+                    lo: c.min(d),
+                    hi: c.max(d),
+                }
+            };
+            let (t, f) = (x * y, four(x, y));
+            if (x.lo < 0.0 && x.hi > 0.0) || (y.lo < 0.0 && y.hi > 0.0) {
+                seen_across += 1;
+            }
+            if t == f {
+                equal += 1;
+                continue;
+            }
+            assert!(
+                tiny(x, y) && f.lo <= t.lo && t.hi <= f.hi,
+                "{x:?} · {y:?}: table {t:?}, four corners {f:?}"
+            );
+        }
+        assert!(
+            seen_across > 100_000 && equal > 390_000,
+            "{seen_across} {equal}"
+        );
+    }
+
+    /// The two-ended vector route of the case tables ([`pair_dir`]) gives bit for bit the ends
+    /// of the scalar directed operations [`mul_dir`] and [`div_dir`], on operands of every
+    /// kind (±0, ±∞, subnormal, tiny, huge, ±MAX, both signs; divisors non-zero).
+    #[test]
+    fn pair_route_equals_the_scalar_directed_operations() {
+        let mut seed = 0xbb67ae8584caa73b_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [
+            0.0,
+            f64::INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            RESIDUAL_EXACT,
+            1e-160,
+            1.0,
+            3.0,
+        ];
+        let float = move |r: u64| -> f64 {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let x = match r % 4 {
+                0 => special[(r >> 8) as usize % special.len()],
+                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
+                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
+            };
+            if r & 4 != 0 { -x } else { x }
+        };
+        let mut vector = 0;
+        for _ in 0..500_000 {
+            let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
+            let m = pair_dir((a, b), (c, d), false);
+            assert_eq!(
+                (m.lo.to_bits(), m.hi.to_bits()),
+                (
+                    mul_dir(a, b, false).to_bits(),
+                    mul_dir(c, d, true).to_bits()
+                ),
+                "{a:e}·{b:e}, {c:e}·{d:e}"
+            );
+            if b != 0.0 && d != 0.0 {
+                let q = pair_dir((a, b), (c, d), true);
+                let (lo, hi) = (div_dir(a, b, false), div_dir(c, d, true));
+                assert!(
+                    (q.lo.to_bits(), q.hi.to_bits()) == (lo.to_bits(), hi.to_bits())
+                        || (q.lo.is_nan() && lo.is_nan())
+                        || (q.hi.is_nan() && hi.is_nan()),
+                    "{a:e}/{b:e} → {:e} vs {lo:e}, {c:e}/{d:e} → {:e} vs {hi:e}",
+                    q.lo,
+                    q.hi
+                );
+                let fin = |x: f64| (RESIDUAL_EXACT..=f64::MAX).contains(&x.abs());
+                if fin(a / b) && fin(c / d) && fin(a) && fin(c) && fin(b) && fin(d) {
+                    vector += 1;
+                }
+            }
+        }
+        assert!(vector > 100_000, "{vector}");
+    }
+
     /// A result that overflows is bounded on its finite side by ±MAX, not by ±∞ (an upper end
     /// −∞ or a lower end +∞ would exclude the exact, finite value). Checked on the `Ulp` ends
     /// themselves: [`Ulp::interval`] would turn such an end pair into [−∞, +∞].
@@ -519,6 +820,80 @@ mod tests {
         assert_eq!(Real::abs(&u(-3.0, 0.0)), u(0.0, 3.0));
         assert_eq!(Real::abs(&u(-3.0, 2.0)), u(0.0, 3.0));
         assert_eq!(Real::abs(&u(-2.0, 3.0)), u(0.0, 3.0));
+    }
+
+    /// The common case of x·k and x/k (both ends at once, 1/k for |k| a power of two) gives
+    /// bit for bit the ends of the one-end-at-a-time route [`int_op_bounds`], on ends of every
+    /// kind (±0, ±∞, subnormal, tiny, huge, ±MAX) and integers of both signs (powers of two up
+    /// to 2^53 included); where both results are finite, they enclose the exact rational ends.
+    #[test]
+    fn integer_scalings_equal_the_one_end_route() {
+        let mut seed = 0x6a09e667f3bcc908_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [
+            0.0,
+            f64::INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            RESIDUAL_EXACT,
+            RESIDUAL_EXACT * 3.0,
+            1.0,
+        ];
+        let float = move |r: u64| -> f64 {
+            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+            let x = match r % 4 {
+                0 => special[(r >> 8) as usize % special.len()],
+                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
+                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
+            };
+            if r & 4 != 0 { -x } else { x }
+        };
+        let one_end = |x: Ulp, k: i64, div: bool| {
+            let kf = k as f64;
+            let (a, b) = if k > 0 { (x.lo, x.hi) } else { (x.hi, x.lo) };
+            match (int_op_bounds(a, kf, div), int_op_bounds(b, kf, div)) {
+                (Some((lo, _)), Some((_, hi))) => Some(Ulp { lo, hi }),
+                _ => None,
+            }
+        };
+        let mut ks: Vec<i64> = (1..=20).chain([1 << 40, 1 << 53, 3 << 50]).collect();
+        ks.extend(ks.clone().iter().map(|k| -k));
+        let mut common = 0;
+        for i in 0..300_000 {
+            let (a, b) = (float(next()), float(next()));
+            let x = if i % 5 == 0 {
+                Ulp::point(a)
+            } else {
+                Ulp {
+                    lo: a.min(b),
+                    hi: a.max(b),
+                }
+            };
+            let k = ks[(next() % ks.len() as u64) as usize];
+            for div in [false, true] {
+                let r = x.int_op(k, div);
+                if let Some(e) = one_end(x, k, div) {
+                    assert_eq!(r, e, "{x:?} {} {k}", if div { "/" } else { "·" });
+                    common += 1;
+                }
+                if r.lo.is_finite() && r.hi.is_finite() && x.lo.is_finite() && x.hi.is_finite() {
+                    let kq = Rational::from(k);
+                    let f = |v: f64| {
+                        if div { q(v) / &kq } else { q(v) * &kq }
+                    };
+                    let (u, v) = (f(x.lo), f(x.hi));
+                    let (lo, hi) = if k > 0 { (u, v) } else { (v, u) };
+                    assert!(contains(r, &lo, &hi), "{x:?} {k} {div}: {r:?}");
+                }
+            }
+        }
+        assert!(common > 300_000, "{common}");
     }
 
     /// x·k and x/k for an integer k enclose the exact rational ends, equal the inari

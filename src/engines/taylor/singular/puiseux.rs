@@ -273,7 +273,7 @@ impl<I: Enclosure> Ctx<I> {
             p.push(if i == 0 {
                 I::one()
             } else {
-                p[par as usize].clone() * g[j as usize].clone()
+                p[par as usize].mul_constant(&g[j as usize])
             });
         }
         p
@@ -391,7 +391,7 @@ impl<I: Enclosure> Gts<I> {
         let mut r = I::zero();
         for (i, c) in self.terms.iter().rev() {
             r = r + match &self.ctx {
-                Some(ctx) => c.clone() * ctx.ranges[*i as usize].clone(),
+                Some(ctx) => c.mul_constant(&ctx.ranges[*i as usize]),
                 None => c.clone(),
             };
         }
@@ -407,7 +407,7 @@ impl<I: Enclosure> Gts<I> {
         let mut r = I::zero();
         for (i, c) in self.terms.iter().rev() {
             r = r + match &self.ctx {
-                Some(_) => c.clone() * p[*i as usize].clone(),
+                Some(_) => c.mul_constant(&p[*i as usize]),
                 None => c.clone(),
             };
         }
@@ -590,9 +590,9 @@ impl<I: Enclosure> Gts<I> {
             terms: self
                 .terms
                 .iter()
-                .map(|(i, x)| (*i, x.clone() * c.clone()))
+                .map(|(i, x)| (*i, x.mul_constant(c)))
                 .collect(),
-            rem: self.rem.clone() * c.clone(),
+            rem: self.rem.mul_constant(c),
             var: 0,
             fac: None,
         }
@@ -757,7 +757,7 @@ impl<I: Enclosure> Mul for Gts<I> {
         let bound = |g: &Gts<I>| -> Vec<I> {
             g.terms
                 .iter()
-                .map(|(i, c)| point_mag(&(c.clone() * ctx.ranges[*i as usize].clone())))
+                .map(|(i, c)| point_mag(&c.mul_constant(&ctx.ranges[*i as usize])))
                 .collect()
         };
         let (ba, bb) = (bound(&self), bound(&o));
@@ -784,8 +784,10 @@ impl<I: Enclosure> Mul for Gts<I> {
         if !(self.rem.same(&zero) && o.rem.same(&zero)) {
             let pa = self.poly_range();
             let pb = o.poly_range();
-            rem =
-                rem + pa * o.rem.clone() + pb * self.rem.clone() + self.rem.clone() * o.rem.clone();
+            rem = rem
+                + pa.mul_constant(&o.rem)
+                + pb.mul_constant(&self.rem)
+                + self.rem.mul_constant(&o.rem);
         }
         Gts {
             ctx: Some(ctx),
