@@ -366,32 +366,9 @@ mod tests {
     /// of them.
     #[test]
     fn quotients_as_inari_equal_inaris() {
-        let mut seed = 0xa54ff53a5f1d36f1_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        let special = [
-            0.0,
-            f64::INFINITY,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            super::super::ulp::RESIDUAL_EXACT,
-            1e-160,
-            1.0,
-        ];
-        let float = move |r: u64| -> f64 {
-            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
-            let x = match r % 4 {
-                0 => special[(r >> 8) as usize % special.len()],
-                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
-                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
-            };
-            if r & 4 != 0 { -x } else { x }
-        };
+        let mut next = crate::arith::interval::xorshift(0xa54ff53a5f1d36f1_u64);
+        let special = crate::arith::interval::SPECIAL;
+        let float = |r: u64| crate::arith::interval::operand(r, &special);
         let same = |a: Interval, b: Interval| {
             a.is_empty() == b.is_empty()
                 && (a.is_empty() || (a.inf() == b.inf() && a.sup() == b.sup()))

@@ -269,6 +269,49 @@ impl Real for Interval {
     }
 }
 
+/// The tests' pseudo-random 64-bit words (xorshift64 from `seed`): operands for comparing a
+/// fast path with the operation it claims to equal.
+/// The tests' special operands (both signs are drawn by [`operand`]): zero, ∞, the largest
+/// and smallest normal and the smallest subnormal doubles, where FMA residuals stop being exact
+/// (and three times that), tiny and unit values.
+#[cfg(test)]
+pub(crate) const SPECIAL: [f64; 11] = [
+    0.0,
+    f64::INFINITY,
+    f64::MAX,
+    f64::MIN_POSITIVE,
+    5e-324,
+    ulp::RESIDUAL_EXACT,
+    ulp::RESIDUAL_EXACT * 3.0,
+    1e-160,
+    1e-150,
+    1.0,
+    3.0,
+];
+
+/// A test operand from a random word `r`: one of `special` (a quarter of the time), a double
+/// of any exponent (subnormal to huge), or one within 2^±30; either sign.
+#[cfg(test)]
+pub(crate) fn operand(r: u64, special: &[f64]) -> f64 {
+    let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
+    let x = match r % 4 {
+        0 => special[(r >> 8) as usize % special.len()],
+        1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
+        _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
+    };
+    if r & 4 != 0 { -x } else { x }
+}
+
+#[cfg(test)]
+pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -457,41 +500,14 @@ mod tests {
         }
     }
 
-    /// mul_constant (in `Ulp` arithmetic) encloses the exact product of the ends and equals
-    /// inari's product; pow refuses a base below 0; the small integer exponents are exact;
-    /// empty operands stay empty; unbounded operands of x/k take inari's quotient.
     /// The fast product ([`Real::mul_constant`]) is inari's `*` bit for bit, on endpoints of
     /// every kind: ±0, ±∞, subnormal, products that underflow (where `Ulp` alone would be one
     /// spacing wider), tiny, huge, ±MAX, thin and across 0.
     #[test]
     fn constant_products_equal_inaris() {
-        let mut seed = 0x3c6ef372fe94f82b_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        let special = [
-            0.0,
-            f64::INFINITY,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            ulp::RESIDUAL_EXACT,
-            1e-160,
-            1e-150,
-            1.0,
-        ];
-        let float = move |r: u64| -> f64 {
-            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
-            let x = match r % 4 {
-                0 => special[(r >> 8) as usize % special.len()],
-                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
-                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
-            };
-            if r & 4 != 0 { -x } else { x }
-        };
+        let mut next = crate::arith::interval::xorshift(0x3c6ef372fe94f82b_u64);
+        let special = crate::arith::interval::SPECIAL;
+        let float = |r: u64| crate::arith::interval::operand(r, &special);
         let (mut tiny, mut n) = (0, 0);
         for i in 0..400_000 {
             let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
@@ -522,6 +538,9 @@ mod tests {
         assert!(n > 300_000 && tiny > 100, "{n} {tiny}");
     }
 
+    /// mul_constant (in `Ulp` arithmetic) encloses the exact product of the ends and equals
+    /// inari's product; pow refuses a base below 0; the small integer exponents are exact;
+    /// empty operands stay empty; unbounded operands of x/k take inari's quotient.
     #[test]
     fn constant_products_and_power_special_cases() {
         use rug::Rational;

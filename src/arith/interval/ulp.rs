@@ -491,13 +491,7 @@ mod tests {
     /// (subnormal and overflowing results included), and equals inari's directed rounding.
     #[test]
     fn operations_enclose_the_exact_results() {
-        let mut seed = 0x9e3779b97f4a7c15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::arith::interval::xorshift(0x9e3779b97f4a7c15_u64);
         let float = move |r: u64| {
             let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
             let e = (r % 2098) as i32 - 1075;
@@ -612,13 +606,7 @@ mod tests {
     /// never wider.
     #[test]
     fn sign_table_equals_the_four_corners() {
-        let mut seed = 0x2545f4914f6cdd1d_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::arith::interval::xorshift(0x2545f4914f6cdd1d_u64);
         let special = [
             0.0,
             -0.0,
@@ -658,7 +646,7 @@ mod tests {
                 lo: a.min(b),
                 hi: a.max(b),
             };
-            let y = if next() % 4 == 0 {
+            let y = if next().is_multiple_of(4) {
                 Ulp::point(c)
             } else {
                 Ulp {
@@ -690,33 +678,9 @@ mod tests {
     /// kind (±0, ±∞, subnormal, tiny, huge, ±MAX, both signs; divisors non-zero).
     #[test]
     fn pair_route_equals_the_scalar_directed_operations() {
-        let mut seed = 0xbb67ae8584caa73b_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        let special = [
-            0.0,
-            f64::INFINITY,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            RESIDUAL_EXACT,
-            1e-160,
-            1.0,
-            3.0,
-        ];
-        let float = move |r: u64| -> f64 {
-            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
-            let x = match r % 4 {
-                0 => special[(r >> 8) as usize % special.len()],
-                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
-                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
-            };
-            if r & 4 != 0 { -x } else { x }
-        };
+        let mut next = crate::arith::interval::xorshift(0xbb67ae8584caa73b_u64);
+        let special = crate::arith::interval::SPECIAL;
+        let float = |r: u64| crate::arith::interval::operand(r, &special);
         let mut vector = 0;
         for _ in 0..500_000 {
             let (a, b, c, d) = (float(next()), float(next()), float(next()), float(next()));
@@ -828,32 +792,9 @@ mod tests {
     /// to 2^53 included); where both results are finite, they enclose the exact rational ends.
     #[test]
     fn integer_scalings_equal_the_one_end_route() {
-        let mut seed = 0x6a09e667f3bcc908_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        let special = [
-            0.0,
-            f64::INFINITY,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            5e-324,
-            RESIDUAL_EXACT,
-            RESIDUAL_EXACT * 3.0,
-            1.0,
-        ];
-        let float = move |r: u64| -> f64 {
-            let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
-            let x = match r % 4 {
-                0 => special[(r >> 8) as usize % special.len()],
-                1 => m * 2f64.powi((r >> 3) as i32 % 2098 - 1075),
-                _ => m * 2f64.powi((r >> 3) as i32 % 60 - 30),
-            };
-            if r & 4 != 0 { -x } else { x }
-        };
+        let mut next = crate::arith::interval::xorshift(0x6a09e667f3bcc908_u64);
+        let special = crate::arith::interval::SPECIAL;
+        let float = |r: u64| crate::arith::interval::operand(r, &special);
         let one_end = |x: Ulp, k: i64, div: bool| {
             let kf = k as f64;
             let (a, b) = if k > 0 { (x.lo, x.hi) } else { (x.hi, x.lo) };
@@ -900,13 +841,7 @@ mod tests {
     /// implementation ([`super`]), and x·0 = 0.
     #[test]
     fn integer_scalings_enclose_the_exact_value() {
-        let mut seed = 0x853c49e6748fea9b_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::arith::interval::xorshift(0x853c49e6748fea9b_u64);
         let float = |r: u64| {
             let m = 1.0 + (r >> 12) as f64 / (1u64 << 52) as f64;
             let e = (r % 2000) as i32 - 1000;
