@@ -973,4 +973,59 @@ mod tests {
             "lo is irrational: no thin enclosure"
         );
     }
+
+    /// [`sub_as_inari`] and [`div_as_inari`] against inari's `−` and `/` on operands aimed at
+    /// the thresholds (quotients near 2^−1074, 2^−1022, 2^−969 and MAX, dividends near 2^−969,
+    /// subnormal divisors, sums near overflow).
+    #[test]
+    fn quotients_as_inari_on_threshold_operands() {
+        use super::super::ulp::adversarial as ulp_adv;
+        let mut g = ulp_adv::Gen::new(0x510e_527f_ade6_82d1);
+        let mut fast = 0u64;
+        for _ in 0..ulp_adv::iters(3_000_000) {
+            let (a, c) = g.pair(true);
+            let (b, d) = if g.next() % 3 == 0 {
+                (a, c)
+            } else {
+                g.pair(true)
+            };
+            // one sign more often than not
+            let (b, d) = if g.next() % 4 != 0 {
+                (b.abs().copysign(a), d.abs().copysign(c))
+            } else {
+                (b, d)
+            };
+            let (Ok(x), Ok(y)) = (
+                Interval::try_from((a.min(b), a.max(b))),
+                Interval::try_from((c.min(d), c.max(d))),
+            ) else {
+                continue;
+            };
+            let s = sub_as_inari(x, y);
+            let e = x - y;
+            assert!(
+                s.inf() == e.inf() && s.sup() == e.sup(),
+                "{x:?} − {y:?}: {s:?} vs {e:?}"
+            );
+            let s = sub_as_inari(x, x);
+            let e = x - x;
+            assert!(s.inf() == e.inf() && s.sup() == e.sup(), "{x:?} − itself");
+            let r = div_as_inari(x, y);
+            let e = x / y;
+            assert!(
+                r.is_empty() == e.is_empty()
+                    && (r.is_empty() || (r.inf() == e.inf() && r.sup() == e.sup())),
+                "{x:?} / {y:?}: {r:?} vs {e:?} ({:e} {:e} / {:e} {:e})",
+                x.inf(),
+                x.sup(),
+                y.inf(),
+                y.sup()
+            );
+            let u = Ulp::of(x) / Ulp::of(y);
+            if u.interval() == e && (y.inf() > 0.0 || y.sup() < 0.0) {
+                fast += 1;
+            }
+        }
+        assert!(fast > ulp_adv::iters(3_000_000) / 6, "{fast}");
+    }
 }

@@ -666,4 +666,52 @@ mod tests {
         assert_eq!(sg(-2.0, -0.5), Interval::from_int(-1));
         assert_eq!(sg(-1.0, 1.0), Interval::try_from((-1.0, 1.0)).unwrap());
     }
+
+    /// [`Real::mul_constant`] against inari's `*` on operands aimed at the thresholds of the
+    /// `Ulp` product and of its fallback (products near 2^−1074, 2^−1022, 2^−969 and MAX;
+    /// signed zeros, ±∞, thin and across 0): equal values, and equal bits up to the sign of a
+    /// zero end.
+    #[test]
+    fn constant_products_on_threshold_operands() {
+        use ulp::adversarial as ulp_adv;
+        let mut g = ulp_adv::Gen::new(0x1f83_d9ab_fb41_bd6b);
+        let mut fallback = 0u64;
+        let mut n = 0u64;
+        for _ in 0..ulp_adv::iters(3_000_000) {
+            let (a, c) = g.pair(false);
+            let (b, d) = if g.next() % 3 == 0 {
+                (a, c)
+            } else {
+                g.pair(false)
+            };
+            let (b, d) = match g.next() % 8 {
+                0 => (b, 0.0),
+                1 => (-0.0, d),
+                _ => (b, d),
+            };
+            let (Ok(x), Ok(y)) = (
+                Interval::try_from((a.min(b), a.max(b))),
+                Interval::try_from((c.min(d), c.max(d))),
+            ) else {
+                continue;
+            };
+            n += 1;
+            let (m, e) = (x.mul_constant(&y), x * y);
+            assert!(
+                m.inf() == e.inf() && m.sup() == e.sup(),
+                "{x:?} · {y:?}: {m:?} vs inari {e:?} ({:e} {:e} · {:e} {:e})",
+                x.inf(),
+                x.sup(),
+                y.inf(),
+                y.sup()
+            );
+            if (ulp::Ulp::of(x) * ulp::Ulp::of(y)).interval() != e {
+                fallback += 1;
+            }
+        }
+        assert!(
+            n > ulp_adv::iters(3_000_000) * 2 / 3 && fallback > 1000,
+            "{n} {fallback}"
+        );
+    }
 }

@@ -85,9 +85,18 @@ fn add_dir(a: f64, b: f64, up: bool) -> f64 {
     if !s.is_finite() {
         return rare(s, false, a.is_finite() && b.is_finite(), up);
     }
-    // TwoSum: a + b = s + e exactly
+    // TwoSum: a + b = s + e exactly — unless an intermediate overflows (a and b of opposite
+    // signs near ±MAX, e.g. −3·2^970 + MAX: s − a = MAX + 2^970 rounds to ∞ and e is NaN;
+    // found by an adversarial review, test `sum_at_max_keeps_the_exact_value`)
     let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
+    let mut e = (a - (s - bb)) + (b - bb);
+    if !e.is_finite() {
+        e = halves_error(a, b, s);
+        if e.is_nan() {
+            // the error's sign unknown: one spacing outward covers it (|e| ≤ half a spacing)
+            return if up { s.next_up() } else { s.next_down() };
+        }
+    }
     if up && e > 0.0 {
         s.next_up()
     } else if !up && e < 0.0 {
@@ -95,6 +104,21 @@ fn add_dir(a: f64, b: f64, up: bool) -> f64 {
     } else {
         s
     }
+}
+
+/// The sign-carrying error of s = fl(a + b) when TwoSum's intermediates overflow: TwoSum on
+/// a/2 and b/2, where nothing overflows (a/2 + b/2 = s/2 + e/2 exactly: halving a normal
+/// double is exact, and rounding commutes with the scaling by 2 at these magnitudes); NaN
+/// where a halving or fl(a/2 + b/2) = s/2 does not hold (the caller then steps outward).
+#[cold]
+fn halves_error(a: f64, b: f64, s: f64) -> f64 {
+    let (ha, hb) = (0.5 * a, 0.5 * b);
+    let hs = ha + hb;
+    if 2.0 * ha != a || 2.0 * hb != b || 2.0 * hs != s {
+        return f64::NAN;
+    }
+    let hbb = hs - ha;
+    (ha - (hs - hbb)) + (hb - hbb)
 }
 
 /// The neighbour of a finite non-zero x away from 0 (`away`) or towards 0, from the bits.
@@ -898,5 +922,363 @@ mod tests {
             Ulp { lo: -inf, hi: 2.0 }.mul_int(3),
             Ulp { lo: -inf, hi: 6.0 }
         );
+    }
+}
+
+/// Adversarial checks of the fast paths (sign table, `pair_dir`, `int_op_common`) on operands
+/// aimed at the thresholds: products and quotients whose exponent lands near 2^−1074, 2^−1022,
+/// 2^−969 and the overflow threshold, mantissas with few bits (exact results, ties) and with
+/// all bits set, signed zeros, ±∞, ±MAX and the neighbours of every threshold.
+#[cfg(test)]
+pub(crate) mod adversarial {
+    use super::*;
+    use rug::Rational;
+
+    fn q(x: f64) -> Rational {
+        Rational::from_f64(x).unwrap()
+    }
+
+    pub(crate) struct Gen(u64);
+
+    /// The sample count: `default`, or BWCL_ADVERSARIAL_ITERS for a longer run.
+    pub(crate) fn iters(default: u64) -> u64 {
+        std::env::var("BWCL_ADVERSARIAL_ITERS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(default)
+    }
+
+    impl Gen {
+        /// A generator from `seed`, mixed with BWCL_ADVERSARIAL_SEED when set (other samples).
+        pub(crate) fn new(seed: u64) -> Self {
+            let extra: u64 = std::env::var("BWCL_ADVERSARIAL_SEED")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(0);
+            Gen((seed ^ extra.wrapping_mul(0x9e37_79b9_7f4a_7c15)) | 1)
+        }
+        pub(crate) fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        /// a mantissa in [1, 2): random, few bits, all bits, or 1 + one ulp
+        fn mant(&mut self) -> f64 {
+            let r = self.next();
+            let bits = match r % 5 {
+                0 | 1 => self.next() >> 12,
+                2 => (self.next() >> 12) & !((1u64 << (52 - (r >> 8) % 8)) - 1),
+                3 => ((1u64 << 52) - 1) ^ ((self.next() >> 60) & 3),
+                _ => (r >> 8) % 3,
+            };
+            f64::from_bits((1023u64 << 52) | bits)
+        }
+        /// m·2^e (rounded when e is below the normal range), either sign
+        pub(crate) fn with_exp(&mut self, e: i32) -> f64 {
+            let m = self.mant();
+            let e = e.clamp(-1200, 1023);
+            let x = if e < -1022 {
+                m * 2f64.powi(-1022) * 2f64.powi(e + 1022)
+            } else {
+                m * 2f64.powi(e)
+            };
+            if self.next() & 1 == 0 { -x } else { x }
+        }
+        pub(crate) fn special(&mut self) -> f64 {
+            let t = RESIDUAL_EXACT;
+            let s = [
+                0.0,
+                -0.0,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::MAX,
+                f64::MAX.next_down(),
+                f64::MIN_POSITIVE,
+                f64::MIN_POSITIVE.next_down(),
+                f64::MIN_POSITIVE.next_up(),
+                5e-324,
+                1e-323,
+                t,
+                t.next_up(),
+                t.next_down(),
+                1.0,
+                3.0,
+                2f64.powi(-511),
+                2f64.powi(512),
+                2f64.powi(-537),
+            ];
+            let x = s[(self.next() % s.len() as u64) as usize];
+            if self.next() & 1 == 0 { -x } else { x }
+        }
+        /// any float: special, or m·2^e over the whole range
+        pub(crate) fn any(&mut self) -> f64 {
+            match self.next() % 4 {
+                0 => self.special(),
+                1 => {
+                    let e = (self.next() % 2100) as i32 - 1076;
+                    self.with_exp(e)
+                }
+                _ => {
+                    let e = (self.next() % 80) as i32 - 40;
+                    self.with_exp(e)
+                }
+            }
+        }
+        /// a target exponent for a product or quotient: near 2^−1074, 2^−1022, 2^−969, MAX
+        pub(crate) fn target(&mut self) -> i32 {
+            let base = [-1075, -1023, -970, 1023, -1050, -1000][(self.next() % 6) as usize];
+            base + (self.next() % 7) as i32 - 3
+        }
+        /// (x, y) with x·y (`div`: x/y) near a threshold, or arbitrary
+        pub(crate) fn pair(&mut self, div: bool) -> (f64, f64) {
+            if self.next() % 4 == 0 {
+                return (self.any(), self.any());
+            }
+            let t = self.target();
+            let ex = (self.next() % 2090) as i32 - 1070;
+            // y's exponent so that ex ± ey ≈ t, kept inside the representable range
+            let ey = if div { ex - t } else { t - ex };
+            if !(-1074..=1023).contains(&ey) {
+                let ey = ey.clamp(-1074, 1023);
+                let ex = if div { t + ey } else { t - ey };
+                return (self.with_exp(ex), self.with_exp(ey));
+            }
+            (self.with_exp(ex), self.with_exp(ey))
+        }
+    }
+
+    fn ulp(a: f64, b: f64) -> Ulp {
+        Ulp {
+            lo: a.min(b),
+            hi: a.max(b),
+        }
+    }
+
+    /// The exact [min, max] of the four endpoint products (`div`: quotients), for finite ends.
+    fn exact_extremes(x: Ulp, y: Ulp, div: bool) -> Option<(Rational, Rational)> {
+        if ![x.lo, x.hi, y.lo, y.hi].iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let mut v = Vec::new();
+        for u in [x.lo, x.hi] {
+            for w in [y.lo, y.hi] {
+                v.push(if div { q(u) / q(w) } else { q(u) * q(w) });
+            }
+        }
+        let lo = v.iter().min().unwrap().clone();
+        let hi = v.iter().max().unwrap().clone();
+        Some((lo, hi))
+    }
+
+    /// Found by an adversarial review (a bug older than the review): TwoSum's b' = s − a
+    /// overflows when b = ±MAX and a is an opposite-signed odd multiple of 2^970 whose sum
+    /// rounds (ties to even) away from a by half a spacing: s − a = ±(MAX + 2^970) rounds to
+    /// ±∞, the error term was NaN and the end was not stepped, so the sum [MAX − 2^971, …]
+    /// excluded the exact MAX − 3·2^970 (inari: MAX − 2^972). Now [`add_dir`] takes the error
+    /// from the halves ([`halves_error`]); the sums equal inari's.
+    #[test]
+    fn sum_at_max_keeps_the_exact_value() {
+        let max = f64::MAX;
+        let a = 3.0 * 2f64.powi(970);
+        for (x, y) in [(-a, max), (max, -a)] {
+            let s = Ulp::point(x) + Ulp::point(y);
+            let exact = q(x) + q(y);
+            assert!(
+                q(s.lo) <= exact && exact <= q(s.hi),
+                "{x:e} + {y:e} = {s:?}"
+            );
+            let i = Interval::try_from((x, x)).unwrap() + Interval::try_from((y, y)).unwrap();
+            assert_eq!(s.interval(), i, "{x:e} + {y:e}");
+        }
+        // the mirror case: an upper end at −MAX
+        for (x, y) in [(a, -max), (-max, a)] {
+            let s = Ulp::point(x) + Ulp::point(y);
+            let exact = q(x) + q(y);
+            assert!(
+                q(s.lo) <= exact && exact <= q(s.hi),
+                "{x:e} + {y:e} = {s:?}"
+            );
+        }
+    }
+
+    /// The product table and quotient table enclose the exact ranges, and the product table
+    /// equals the four corners (narrower only where a corner underflows); pair_dir equals
+    /// mul_dir/div_dir bit for bit; every directed operation in its common case equals inari's.
+    #[test]
+    fn fast_products_and_quotients_on_threshold_operands() {
+        let mut g = Gen::new(0x9c1f_23d4_77a1_0b35);
+        let (mut n_q, mut n_common) = (0u64, 0u64);
+        for i in 0..iters(2_000_000) {
+            let div = i % 2 == 1;
+            let (a, c) = g.pair(div);
+            let (b, d) = if g.next() % 3 == 0 {
+                (a, c)
+            } else {
+                g.pair(div)
+            };
+            // pair_dir against the scalar operations, bits compared
+            let m = pair_dir((a, c), (b, d), div);
+            let (lo, hi) = if div {
+                (div_dir(a, c, false), div_dir(b, d, true))
+            } else {
+                (mul_dir(a, c, false), mul_dir(b, d, true))
+            };
+            assert!(
+                (m.lo.to_bits() == lo.to_bits() || (m.lo.is_nan() && lo.is_nan()))
+                    && (m.hi.to_bits() == hi.to_bits() || (m.hi.is_nan() && hi.is_nan())),
+                "{a:e} {c:e} {b:e} {d:e} div={div}: {m:?} vs {lo:e} {hi:e}"
+            );
+            // the scalar operation in its common case is inari's directed rounding
+            if a.is_finite() && c.is_finite() && c != 0.0 {
+                let p = if div { a / c } else { a * c };
+                let common = (RESIDUAL_EXACT..=f64::MAX).contains(&p.abs())
+                    && (!div || a.abs() >= RESIDUAL_EXACT);
+                if common {
+                    n_common += 1;
+                    let (ia, ic) = (
+                        Interval::try_from((a, a)).unwrap(),
+                        Interval::try_from((c, c)).unwrap(),
+                    );
+                    let r = if div { ia / ic } else { ia * ic };
+                    let (l, h) = if div {
+                        (div_dir(a, c, false), div_dir(a, c, true))
+                    } else {
+                        (mul_dir(a, c, false), mul_dir(a, c, true))
+                    };
+                    assert!(
+                        l == r.inf() && h == r.sup(),
+                        "{a:e} {} {c:e}: [{l:e}, {h:e}] vs inari {r:?}",
+                        if div { "/" } else { "·" }
+                    );
+                }
+            }
+            // interval operations: enclosure of the exact range, the table against the corners
+            let (x, y) = (ulp(a, b), ulp(c, d));
+            if x.lo.is_nan() || y.lo.is_nan() {
+                continue;
+            }
+            if div {
+                if !(y.lo > 0.0 || y.hi < 0.0) {
+                    continue;
+                }
+                let r = x / y;
+                if let Some((lo, hi)) = exact_extremes(x, y, true)
+                    && r.lo.is_finite()
+                    && r.hi.is_finite()
+                {
+                    n_q += 1;
+                    assert!(
+                        q(r.lo) <= lo && hi <= q(r.hi),
+                        "{x:?} / {y:?} = {r:?} misses [{lo}, {hi}]"
+                    );
+                }
+            } else {
+                let r = x * y;
+                let f = corners(x, y, None, mul_dir);
+                let tiny = [(x.lo, y.lo), (x.lo, y.hi), (x.hi, y.lo), (x.hi, y.hi)]
+                    .iter()
+                    .any(|&(u, v)| u != 0.0 && v != 0.0 && (u * v).abs() < RESIDUAL_EXACT);
+                assert!(
+                    r == f || (tiny && f.lo <= r.lo && r.hi <= f.hi),
+                    "{x:?} · {y:?}: {r:?} vs corners {f:?}"
+                );
+                if let Some((lo, hi)) = exact_extremes(x, y, false)
+                    && r.lo.is_finite()
+                    && r.hi.is_finite()
+                {
+                    assert!(
+                        q(r.lo) <= lo && hi <= q(r.hi),
+                        "{x:?} · {y:?} = {r:?} misses [{lo}, {hi}]"
+                    );
+                }
+                // an infinite end from finite operands only where the exact end is beyond ±MAX
+                if let Some((lo, hi)) = exact_extremes(x, y, false) {
+                    let max = q(f64::MAX);
+                    assert!(
+                        (r.lo != f64::NEG_INFINITY || lo < -max.clone())
+                            && (r.hi != f64::INFINITY || hi > max),
+                        "{x:?} · {y:?} = {r:?}"
+                    );
+                }
+            }
+        }
+        assert!(
+            n_q > 300_000.min(iters(2_000_000) / 7) && n_common > 500_000.min(iters(2_000_000) / 4),
+            "{n_q} {n_common}"
+        );
+    }
+
+    /// x·k and x/k: the common route equals the one-end route bit for bit, encloses the exact
+    /// value, and equals inari's directed operation where the result is in the residual range;
+    /// k over small integers, powers of two up to 2^62, i64::MIN, and large odd integers.
+    #[test]
+    fn integer_scalings_on_threshold_operands() {
+        let mut g = Gen::new(0x5be0_cd19_137e_2179);
+        let ks: Vec<i64> = (1..=40)
+            .chain((0..63).map(|j| 1i64 << j))
+            .chain([
+                (1 << 53) - 1,
+                3 << 50,
+                12345,
+                1 << 60,
+                (1 << 61) + 0,
+                (1 << 62) + (1 << 10),
+            ])
+            .flat_map(|k| [k, -k])
+            .chain([i64::MIN])
+            .collect();
+        let mut n = 0u64;
+        for i in 0..iters(2_000_000) {
+            let div = i % 2 == 1;
+            let k = ks[(g.next() % ks.len() as u64) as usize];
+            let kf = k as f64;
+            assert_eq!(kf as i128, k as i128);
+            // x near k·2^t (quotient) or 2^t/k (product) for a threshold t
+            let lk = kf.abs().log2().floor() as i32;
+            let t = g.target();
+            let mk = |g: &mut Gen| match g.next() % 3 {
+                0 => g.any(),
+                _ => g.with_exp(if div { t + lk } else { t - lk }),
+            };
+            let (a, b) = (mk(&mut g), mk(&mut g));
+            if a.is_nan() || b.is_nan() {
+                continue;
+            }
+            let x = if g.next() % 3 == 0 {
+                Ulp::point(a)
+            } else {
+                ulp(a, b)
+            };
+            let r = x.int_op(k, div);
+            let (u, v) = if k > 0 { (x.lo, x.hi) } else { (x.hi, x.lo) };
+            if let Some(c) = int_op_common(u, v, kf, div) {
+                let lo = int_op_bounds(u, kf, div).unwrap().0;
+                let hi = int_op_bounds(v, kf, div).unwrap().1;
+                assert!(
+                    c.lo.to_bits() == lo.to_bits() && c.hi.to_bits() == hi.to_bits(),
+                    "{x:?} {k} div={div}: {c:?} vs [{lo:e}, {hi:e}]"
+                );
+                n += 1;
+                // inari's directed results
+                let ix = Interval::try_from((x.lo, x.hi)).unwrap();
+                let ik = Interval::try_from((kf, kf)).unwrap();
+                let e = if div { ix / ik } else { ix * ik };
+                assert!(
+                    c.lo == e.inf() && c.hi == e.sup(),
+                    "{x:?} {k} div={div}: {c:?} vs {e:?}"
+                );
+            }
+            if x.lo.is_finite() && x.hi.is_finite() && r.lo.is_finite() && r.hi.is_finite() {
+                let kq = Rational::from(k);
+                let f = |w: f64| if div { q(w) / &kq } else { q(w) * &kq };
+                let (p, s) = (f(u), f(v));
+                assert!(
+                    q(r.lo) <= p && s <= q(r.hi),
+                    "{x:?} {k} div={div}: {r:?} misses [{p}, {s}]"
+                );
+            }
+        }
+        assert!(n > 400_000.min(iters(2_000_000) / 5), "{n}");
     }
 }
