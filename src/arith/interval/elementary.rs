@@ -984,13 +984,13 @@ mod tests {
         let mut fast = 0u64;
         for _ in 0..ulp_adv::iters(3_000_000) {
             let (a, c) = g.pair(true);
-            let (b, d) = if g.next() % 3 == 0 {
+            let (b, d) = if g.next().is_multiple_of(3) {
                 (a, c)
             } else {
                 g.pair(true)
             };
             // one sign more often than not
-            let (b, d) = if g.next() % 4 != 0 {
+            let (b, d) = if !g.next().is_multiple_of(4) {
                 (b.abs().copysign(a), d.abs().copysign(c))
             } else {
                 (b, d)

@@ -679,7 +679,7 @@ mod tests {
         let mut n = 0u64;
         for _ in 0..ulp_adv::iters(3_000_000) {
             let (a, c) = g.pair(false);
-            let (b, d) = if g.next() % 3 == 0 {
+            let (b, d) = if g.next().is_multiple_of(3) {
                 (a, c)
             } else {
                 g.pair(false)

@@ -1032,7 +1032,7 @@ pub(crate) mod adversarial {
         }
         /// (x, y) with x·y (`div`: x/y) near a threshold, or arbitrary
         pub(crate) fn pair(&mut self, div: bool) -> (f64, f64) {
-            if self.next() % 4 == 0 {
+            if self.next().is_multiple_of(4) {
                 return (self.any(), self.any());
             }
             let t = self.target();
@@ -1112,7 +1112,7 @@ pub(crate) mod adversarial {
         for i in 0..iters(2_000_000) {
             let div = i % 2 == 1;
             let (a, c) = g.pair(div);
-            let (b, d) = if g.next() % 3 == 0 {
+            let (b, d) = if g.next().is_multiple_of(3) {
                 (a, c)
             } else {
                 g.pair(div)
@@ -1222,7 +1222,7 @@ pub(crate) mod adversarial {
                 3 << 50,
                 12345,
                 1 << 60,
-                (1 << 61) + 0,
+                1 << 61,
                 (1 << 62) + (1 << 10),
             ])
             .flat_map(|k| [k, -k])
@@ -1245,7 +1245,7 @@ pub(crate) mod adversarial {
             if a.is_nan() || b.is_nan() {
                 continue;
             }
-            let x = if g.next() % 3 == 0 {
+            let x = if g.next().is_multiple_of(3) {
                 Ulp::point(a)
             } else {
                 ulp(a, b)
