@@ -76,6 +76,11 @@ fn int_op(x: Interval, k: i64, div: bool) -> Interval {
             Interval::try_from((0.0, 0.0)).unwrap()
         };
     }
+    if k.unsigned_abs() > 1 << 53 {
+        // not always a double (2^53 + 1 rounds to 2^53): its enclosure around the nearest
+        let ki = Interval::try_from((kf.next_down(), kf.next_up())).unwrap();
+        return if div { x / ki } else { x * ki };
+    }
     let (a, b) = if k > 0 {
         (x.inf(), x.sup())
     } else {
@@ -315,6 +320,28 @@ pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// k beyond 2^53 (2^53 + 1 is not a double): x·k and x/k hold the exact results.
+    #[test]
+    fn integer_scalings_beyond_two_to_the_53_hold_the_exact_results() {
+        use rug::Rational;
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        let two53: i64 = 1 << 53;
+        for k in [two53 + 1, -(two53 + 3), 3 * two53 + 5, i64::MAX, -two53] {
+            for x in [1.0, -0.75, 3.0e-200] {
+                let xi = Interval::try_from((x, x)).unwrap();
+                for div in [false, true] {
+                    let r = super::int_op(xi, k, div);
+                    let kq = Rational::from(k);
+                    let exact = if div { q(x) / kq } else { q(x) * kq };
+                    assert!(
+                        q(r.inf()) <= exact && exact <= q(r.sup()),
+                        "{x:e}, {k}: {r:?}"
+                    );
+                }
+            }
+        }
+    }
 
     /// x·k and x/k by the residual method enclose the exact rational result, are at most one
     /// ulp wide per end, and equal inari's where inari is exact.

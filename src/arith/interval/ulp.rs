@@ -378,13 +378,23 @@ impl Div for Ulp {
 
 impl Ulp {
     /// x·k or x/k for an exact integer k (k ≠ 0 for a quotient) by the exact-residual method
-    /// of [`super`].
+    /// of [`super`]; an integer beyond 2^53 in magnitude (not always a double: 2^53 + 1 would
+    /// round to 2^53) by its enclosure [k̃⁻, k̃⁺] around the nearest double k̃ (noted by an
+    /// adversarial review; every caller uses small k).
     #[inline]
     pub(crate) fn int_op(self, k: i64, div: bool) -> Self {
         if k == 0 && !div {
             return Self::point(0.0);
         }
         let kf = k as f64;
+        if k.unsigned_abs() > 1 << 53 {
+            // |k − k̃| ≤ half a spacing of k̃
+            let ki = Self {
+                lo: kf.next_down(),
+                hi: kf.next_up(),
+            };
+            return if div { self / ki } else { self * ki };
+        }
         let (a, b) = if k > 0 {
             (self.lo, self.hi)
         } else {
@@ -1069,6 +1079,42 @@ pub(crate) mod adversarial {
         let lo = v.iter().min().unwrap().clone();
         let hi = v.iter().max().unwrap().clone();
         Some((lo, hi))
+    }
+
+    /// Integers beyond 2^53 are not always doubles (2^53 + 1 rounds to 2^53): x·k and x/k hold
+    /// the exact rational results for such k of both signs, and for k = ±2^53 exactly.
+    #[test]
+    fn integer_scalings_beyond_two_to_the_53_hold_the_exact_results() {
+        let two53: i64 = 1 << 53;
+        for k in [
+            two53 + 1,
+            two53 + 3,
+            -(two53 + 1),
+            3 * two53 + 5,
+            i64::MAX,
+            two53,
+            -two53,
+        ] {
+            for x in [1.0, -0.75, 3.0e-200, 1.5e200] {
+                let kq = Rational::from(k);
+                for div in [false, true] {
+                    let r = Ulp::point(x).int_op(k, div);
+                    let exact = if div {
+                        q(x) / kq.clone()
+                    } else {
+                        q(x) * kq.clone()
+                    };
+                    assert!(
+                        r.lo.is_finite()
+                            && r.hi.is_finite()
+                            && q(r.lo) <= exact
+                            && exact <= q(r.hi),
+                        "{x:e} {} {k}: {r:?}",
+                        if div { "/" } else { "·" }
+                    );
+                }
+            }
+        }
     }
 
     /// Found by an adversarial review (a bug older than the review): TwoSum's b' = s − a
