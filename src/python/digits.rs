@@ -7,10 +7,9 @@ use super::arrays::{put_bool, put_f64, put_f64_2d};
 use super::cli::args::CorArgs;
 use super::cli::input::Case;
 use super::cli::precise::texts;
+use super::rigorous::pair_text;
 use super::run::{compute_rows, py_error};
-use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::ModelKind;
-use bwcl::observables::decimal::{Rounding, outward};
 use bwcl::observables::precision::{
     PreciseEnclosure, bits_for_digits, options_for_digits, outward_f64, outward_text,
     rigorous_impact_digits, width_text,
@@ -27,13 +26,9 @@ fn pair(p: Option<&[Rational; 2]>) -> [f64; 2] {
         .map_or([f64::NAN; 2], |x| [x.inf(), x.sup()])
 }
 
-/// An upper bound of a width as a double.
+/// An upper bound of a width as a double (the upper end of the point's outward doubles).
 fn width_up(w: &Rational) -> f64 {
-    use rug::Float;
-    use rug::float::Round;
-    Float::with_val_round(53, w, Round::Up)
-        .0
-        .to_f64_round(Round::Up)
+    pair(Some(&[w.clone(), w.clone()]))[1]
 }
 
 /// The dict of `cor_rigorous` (same keys) for `--digits`.
@@ -103,14 +98,7 @@ pub fn cor_digits<'py>(
     put_f64_2d(&out, "params", params, 12)?;
     let v0_text: Vec<Option<(String, String)>> = v0s
         .iter()
-        .map(|v| {
-            v.map(|x| {
-                (
-                    outward(x.inf(), Rounding::Down),
-                    outward(x.sup(), Rounding::Up),
-                )
-            })
-        })
+        .map(|v| pair_text(v.map(|x| [x.inf(), x.sup()])))
         .collect();
     out.set_item("v0_text", v0_text)?;
     let text = |f: &dyn Fn(&PreciseEnclosure) -> &[Rational; 2]| {
@@ -141,10 +129,8 @@ pub fn cor_digits<'py>(
         vec![None::<Vec<(u32, f64, bool, String)>>; rows.len()],
     )?;
     out.set_item("horizon", opts.horizon)?;
-    out.set_item(
-        "order",
-        options_for_digits(d, &TaylorOptions::default()).order,
-    )?;
+    // the order the runs used (rigorous_impact_digits derives it from D the same way)
+    out.set_item("order", options_for_digits(d, &opts).order)?;
     out.set_item("seconds", seconds)?;
     out.set_item("threads", used)?;
     out.set_item("digits", digits)?;

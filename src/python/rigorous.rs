@@ -20,7 +20,7 @@ fn pair(b: Option<[f64; 2]>) -> [f64; 2] {
 }
 
 /// The bounds as decimals rounded outward (lower down, upper up), as in the CLI's output.
-fn pair_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
+pub(super) fn pair_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
     b.map(|[lo, hi]| (outward(lo, Rounding::Down), outward(hi, Rounding::Up)))
 }
 

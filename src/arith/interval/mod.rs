@@ -309,12 +309,16 @@ pub(crate) fn operand(r: u64, special: &[f64]) -> f64 {
 
 #[cfg(test)]
 pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
-    move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    }
+    move || xorshift_step(&mut seed)
+}
+
+/// One step of xorshift64 on the state `s`: the next word.
+#[cfg(test)]
+pub(crate) fn xorshift_step(s: &mut u64) -> u64 {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    *s
 }
 
 #[cfg(test)]

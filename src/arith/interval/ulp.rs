@@ -968,10 +968,7 @@ pub(crate) mod adversarial {
             Gen((seed ^ extra.wrapping_mul(0x9e37_79b9_7f4a_7c15)) | 1)
         }
         pub(crate) fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
+            crate::arith::interval::xorshift_step(&mut self.0)
         }
         /// a mantissa in [1, 2): random, few bits, all bits, or 1 + one ulp
         fn mant(&mut self) -> f64 {

@@ -50,6 +50,13 @@ use crate::arith::{Enclosure, Real};
 use puiseux::{Basis, Ctx, Gts, bounded};
 use std::sync::Arc;
 
+/// Whether BWCL_TRACE_SING is set: the singular steps then print what they try to stderr (read
+/// once per process, not at every step).
+fn trace_sing() -> bool {
+    static TRACE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *TRACE.get_or_init(|| std::env::var_os("BWCL_TRACE_SING").is_some())
+}
+
 /// The exact double x as a point of `I`.
 fn point<I: Enclosure>(x: f64) -> I {
     I::from_exact_f64(x)
@@ -192,7 +199,7 @@ impl<const N: usize, I: Enclosure> SingularTape<N, I> {
             .filter(|q| q.lo() > 0.0)
             .collect();
         let basis = Basis::new(&gens, opts.max_exp)?;
-        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+        if trace_sing() {
             eprintln!(
                 "singular basis: generators {gens:?}, {} exponents up to M",
                 basis.len()
@@ -304,7 +311,7 @@ fn validate<I: Enclosure>(
     let mut same_c0 = vec![false; y.len()];
     for _it in 0..opts.iterations {
         let y1 = op(&y);
-        if y1.is_none() && std::env::var_os("BWCL_TRACE_SING").is_some() {
+        if y1.is_none() && trace_sing() {
             eprintln!("validate: the image of iteration {_it} is unbounded");
         }
         let y1 = y1?;
@@ -324,7 +331,7 @@ fn validate<I: Enclosure>(
         .collect();
     for _try in 0..opts.tries {
         let ts = op(&s);
-        if ts.is_none() && std::env::var_os("BWCL_TRACE_SING").is_some() {
+        if ts.is_none() && trace_sing() {
             eprintln!("validate: the image of candidate {_try} is unbounded");
         }
         let ts = ts?;
@@ -340,7 +347,7 @@ fn validate<I: Enclosure>(
             for _ in 0..opts.tighten {
                 y = op(&y)?;
             }
-            if std::env::var_os("BWCL_TRACE_SING").is_some() {
+            if trace_sing() {
                 eprintln!("validate: T(S) ⊆ S at candidate {_try}");
             }
             return Some(y);
@@ -425,7 +432,7 @@ fn cross_point<const N: usize, I: Enclosure>(
             b.y[j].eval(&ustar)
         }
     });
-    if std::env::var_os("BWCL_TRACE_SING").is_some() {
+    if trace_sing() {
         let rems = |s: &Side<I>| {
             s.y.iter()
                 .map(|g| format!("{:.1e}/{}", g.remainder().wid_f64(), g.terms().len()))
@@ -559,7 +566,7 @@ pub fn crossing_step<const N: usize, I: Enclosure>(
     opts: &SingularOptions,
 ) -> Option<StepOut<N, I>> {
     let clock = std::time::Instant::now();
-    let trace = std::env::var_os("BWCL_TRACE_SING").is_some();
+    let trace = trace_sing();
     let p = rep.cloned().unwrap_or_else(|| Parallelepiped::from_box(x0));
     let c: [I; N] = p.c.clone();
     let cp = cross_point(st, tape, t0, &c, w, opts, None);
@@ -680,7 +687,7 @@ impl<const N: usize, I: Enclosure> Singular<N, I> {
             self.opts.start_delta,
             &self.opts,
         );
-        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+        if trace_sing() {
             eprintln!(
                 "start attempt at t0 {t0}: {} in {:?} ({} exponents up to {})",
                 if out.is_some() { "proved" } else { "refused" },

@@ -47,7 +47,7 @@
 //! x_j = s_j·u*·W_j(u*) (intersected with the expanded s_j·u·W_j at u*), y_j(u*).
 
 use super::puiseux::{Basis, Ctx, Gts, bounded};
-use super::{SingularOptions, exit_parameter, point, validate};
+use super::{SingularOptions, exit_parameter, point, trace_sing, validate};
 use crate::arith::{Enclosure, Real};
 use crate::engines::taylor::step::{StepOut, low_order_step};
 use crate::engines::taylor::tape::Tape;
@@ -173,7 +173,7 @@ pub fn start_point<const N: usize, I: Enclosure>(
         picard(gts_tape, &ctx, w, sigma, &roles, t0, x0, y)
     });
     let Some(y) = y else {
-        if std::env::var_os("BWCL_TRACE_SING").is_some() {
+        if trace_sing() {
             eprintln!("start: the expansions do not validate");
         }
         return None;
@@ -200,7 +200,7 @@ pub fn start_point<const N: usize, I: Enclosure>(
             return None;
         }
     }
-    if std::env::var_os("BWCL_TRACE_SING").is_some() {
+    if trace_sing() {
         let rems: Vec<String> = y
             .iter()
             .map(|g| format!("{:.1e}/{}", g.remainder().wid_f64(), g.terms().len()))
@@ -235,7 +235,7 @@ pub fn start_step<const N: usize, I: Enclosure>(
 ) -> Option<StepOut<N, I>> {
     let (t1, z) = start_point(gts_tape, basis, tape, t0, x0, delta, opts)?;
     let lo = low_order_step(tape, t0, x0, t1 - t0)?;
-    if std::env::var_os("BWCL_TRACE_SING").is_some() && lo.piece.t1() != t1 {
+    if trace_sing() && lo.piece.t1() != t1 {
         eprintln!(
             "start: the low-order piece ends at {} ≠ t₁ = {t1}",
             lo.piece.t1()
