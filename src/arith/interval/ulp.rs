@@ -97,13 +97,8 @@ fn add_dir(a: f64, b: f64, up: bool) -> f64 {
             return if up { s.next_up() } else { s.next_down() };
         }
     }
-    if up && e > 0.0 {
-        s.next_up()
-    } else if !up && e < 0.0 {
-        s.next_down()
-    } else {
-        s
-    }
+    // the exact sum lies above s when e > 0: the upper end steps up (the lower down for e < 0)
+    nudge(s, up, if up { e > 0.0 } else { e < 0.0 })
 }
 
 /// The sign-carrying error of s = fl(a + b) when TwoSum's intermediates overflow: TwoSum on
@@ -121,13 +116,24 @@ fn halves_error(a: f64, b: f64, s: f64) -> f64 {
     (ha - (hs - hbb)) + (hb - hbb)
 }
 
-/// The neighbour of a finite non-zero x away from 0 (`away`) or towards 0, from the bits.
+/// x moved to its neighbour towards +∞ (`up`) or −∞ when `go` holds, else x; x finite and
+/// non-zero whenever `go` holds (a directed rounding steps only a result that was rounded,
+/// which a zero never is: a sum or difference rounds to 0 only when exact, and the products
+/// and quotients step only results of magnitude ≥ 2^−969).
+///
+/// Without branches: which side of the nearest result the exact one lies on is data — about
+/// half of the ends step, in no pattern a branch predictor could learn — so a branch here
+/// was mispredicted about half the time (measured: an order-16 jet of the SHC field on
+/// varying boxes took 9.9 µs with branches, against 6.4 µs on one box repeated). From the
+/// bits, with s = ±1 the sign of x: the neighbour towards +∞ is bits + s (away from 0 for
+/// x > 0, towards 0 for x < 0), towards −∞ bits − s; the step is masked to 0 unless `go`.
 #[inline(always)]
-fn step(x: f64, up: bool) -> f64 {
-    // for x > 0 going up moves away from 0 (bits + 1); for x < 0 going up moves towards 0
-    let away = (x > 0.0) == up;
-    let b = x.to_bits();
-    f64::from_bits(if away { b + 1 } else { b - 1 })
+fn nudge(x: f64, up: bool, go: bool) -> f64 {
+    let b = x.to_bits() as i64;
+    // (b >> 63) is 0 for x > 0 and −1 for x < 0 (arithmetic shift): s = that | 1 = ±1
+    let s = (b >> 63) | 1;
+    let d = if up { s } else { -s };
+    f64::from_bits(b.wrapping_add(d & -(go as i64)) as u64)
 }
 
 /// a·b rounded towards −∞ (`up = false`) or +∞; 0·∞ = 0.
@@ -138,11 +144,7 @@ fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
     if (RESIDUAL_EXACT..=f64::MAX).contains(&m) {
         // the common case: finite, residual exact
         let e = a.mul_add(b, -p);
-        if (up && e > 0.0) || (!up && e < 0.0) {
-            step(p, up)
-        } else {
-            p
-        }
+        nudge(p, up, if up { e > 0.0 } else { e < 0.0 })
     } else {
         rare(p, a == 0.0 || b == 0.0, a.is_finite() && b.is_finite(), up)
     }
@@ -293,8 +295,8 @@ fn pair_dir(lo: (f64, f64), hi: (f64, f64), div: bool) -> Ulp {
                 (r0 < 0.0, r1 > 0.0)
             };
             return Ulp {
-                lo: if below { step(p0, false) } else { p0 },
-                hi: if above { step(p1, true) } else { p1 },
+                lo: nudge(p0, false, below),
+                hi: nudge(p1, true, above),
             };
         }
     }
@@ -341,11 +343,7 @@ fn div_dir(a: f64, b: f64, up: bool) -> f64 {
         let r = (-q).mul_add(b, a);
         let above = if b > 0.0 { r > 0.0 } else { r < 0.0 };
         let below = if b > 0.0 { r < 0.0 } else { r > 0.0 };
-        if (up && above) || (!up && below) {
-            step(q, up)
-        } else {
-            q
-        }
+        nudge(q, up, if up { above } else { below })
     } else {
         rare(q, a == 0.0, a.is_finite(), up)
     }
@@ -430,8 +428,8 @@ fn int_op_common(a: f64, b: f64, k: f64, div: bool) -> Option<Ulp> {
     // sign of (exact − p): for a product x·k − p; for a quotient (x − p·k)/k
     let s = if div { k.signum() } else { 1.0 };
     Some(Ulp {
-        lo: if ra * s < 0.0 { pa.next_down() } else { pa },
-        hi: if rb * s > 0.0 { pb.next_up() } else { pb },
+        lo: nudge(pa, false, ra * s < 0.0),
+        hi: nudge(pb, true, rb * s > 0.0),
     })
 }
 
@@ -519,6 +517,46 @@ mod tests {
 
     fn contains(r: Ulp, lo: &Rational, hi: &Rational) -> bool {
         q(r.lo) <= *lo && *hi <= q(r.hi)
+    }
+
+    /// [`nudge`] is `next_up` / `next_down` where it steps and the identity where it does not,
+    /// for finite non-zero doubles of every kind (subnormal, the normal threshold, ±MAX, whose
+    /// step outwards is ±∞) and random ones of both signs.
+    #[test]
+    fn nudge_steps_like_next_up_and_next_down() {
+        let mut next = crate::arith::interval::xorshift(0x2545f4914f6cdd1d_u64);
+        let mut xs = vec![
+            f64::from_bits(1),
+            f64::MIN_POSITIVE,
+            f64::MIN_POSITIVE.next_down(),
+            f64::MIN_POSITIVE.next_up(),
+            1.0,
+            1.0f64.next_down(),
+            2.0,
+            f64::MAX,
+            f64::MAX.next_down(),
+            RESIDUAL_EXACT,
+        ];
+        for _ in 0..20_000 {
+            let x = f64::from_bits(next() & !(1 << 63));
+            if x.is_finite() && x != 0.0 {
+                xs.push(x);
+            }
+        }
+        for x in xs.iter().flat_map(|&x| [x, -x]) {
+            assert_eq!(
+                nudge(x, true, true).to_bits(),
+                x.next_up().to_bits(),
+                "up {x:e}"
+            );
+            assert_eq!(
+                nudge(x, false, true).to_bits(),
+                x.next_down().to_bits(),
+                "down {x:e}"
+            );
+            assert_eq!(nudge(x, true, false).to_bits(), x.to_bits());
+            assert_eq!(nudge(x, false, false).to_bits(), x.to_bits());
+        }
     }
 
     /// Every operation encloses the exact result of exact endpoints over many binades
