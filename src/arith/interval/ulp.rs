@@ -116,6 +116,13 @@ fn halves_error(a: f64, b: f64, s: f64) -> f64 {
     (ha - (hs - hbb)) + (hb - hbb)
 }
 
+/// x if `m`, else y, from the bits (without a branch: `m` is data, see [`nudge`]).
+#[inline(always)]
+fn select(m: bool, x: f64, y: f64) -> f64 {
+    let k = (m as u64).wrapping_neg();
+    f64::from_bits((x.to_bits() & k) | (y.to_bits() & !k))
+}
+
 /// x moved to its neighbour towards +∞ (`up`) or −∞ when `go` holds, else x; x finite and
 /// non-zero whenever `go` holds (a directed rounding steps only a result that was rounded,
 /// which a zero never is: a sum or difference rounds to 0 only when exact, and the products
@@ -359,17 +366,25 @@ impl Div for Ulp {
         if !(c > 0.0 || d < 0.0) || a.is_nan() || b.is_nan() {
             return Self::ENTIRE;
         }
-        // divisor of certain sign: the case table when the dividend has one too
-        let pairs = match (a >= 0.0, b <= 0.0, c > 0.0) {
-            (true, _, true) => Some(((a, d), (b, c))),
-            (true, _, false) => Some(((b, d), (a, c))),
-            (_, true, true) => Some(((a, c), (b, d))),
-            (_, true, false) => Some(((b, c), (a, d))),
-            _ => None,
-        };
-        match pairs {
-            Some((lo, hi)) => pair_dir(lo, hi, true),
-            None => corners(self, o, None, div_dir),
+        // divisor of certain sign: x/y is monotone in x for every y (increasing for y > 0),
+        // and in y for every x of one sign, so each end is one endpoint quotient whichever
+        // the dividend's signs (a dividend across 0 included): for y > 0 the lower end a/d
+        // (a ≥ 0) or a/c (a < 0), the upper b/c (b ≥ 0) or b/d; for y < 0 the lower b/d
+        // (b ≥ 0) or b/c, the upper a/c (a ≥ 0) or a/d. The divisor's sign is the same over
+        // a whole recurrence (w₀'s), the dividend's varies with the order: chosen by
+        // [`select`], without branches.
+        if c > 0.0 {
+            pair_dir(
+                (a, select(a >= 0.0, d, c)),
+                (b, select(b >= 0.0, c, d)),
+                true,
+            )
+        } else {
+            pair_dir(
+                (b, select(b >= 0.0, d, c)),
+                (a, select(a >= 0.0, c, d)),
+                true,
+            )
         }
     }
 }
