@@ -14,7 +14,10 @@
 //! - an overflow to ±∞ in the wrong direction is replaced by ±f64::MAX, and 0·∞ counts as 0
 //!   (the set-based product).
 //!
-//! So results equal inari's (tests below check enclosure of the exact rational results).
+//! So results equal inari's in the common case; a result below 2^−969 in magnitude (stepped out
+//! unconditionally) or a quotient by a divisor touching 0 (every real) may be wider than
+//! inari's, never narrower (tests below: enclosure of the exact rational results, and
+//! `ulp_ops_hold_inari_and_the_exact_corners`).
 
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -1376,5 +1379,197 @@ pub(crate) mod adversarial {
             }
         }
         assert!(n > 400_000.min(iters(2_000_000) / 5), "{n}");
+    }
+}
+
+#[cfg(test)]
+/// An adversarial review's probes (2026-11-25): every operation and chains of them against
+/// inari's results and the exact corners.
+mod against_inari {
+    use super::adversarial::{Gen, iters};
+    use super::*;
+    use rug::Rational;
+
+    fn q(x: f64) -> Rational {
+        Rational::from_f64(x).unwrap()
+    }
+
+    /// a random non-empty inari interval: special ends, arbitrary, across 0, one end ±0,
+    /// thin, or with an infinite end
+    fn rand_iv(g: &mut Gen) -> Interval {
+        loop {
+            let r = g.next() % 8;
+            let (a, b) = match r {
+                0 => (g.special(), g.special()),
+                1 => (g.any(), g.any()),
+                2 => {
+                    let (u, v) = (g.any().abs(), g.any().abs());
+                    (-u, v)
+                }
+                3 => {
+                    let z = if g.next() & 1 == 0 { 0.0 } else { -0.0 };
+                    (z, g.any())
+                }
+                4 => {
+                    let x = g.any();
+                    (x, x)
+                }
+                5 => {
+                    let dv = g.next() & 1 == 0;
+                    g.pair(dv)
+                }
+                6 => {
+                    let x = g.any();
+                    let inf = if g.next() & 1 == 0 {
+                        f64::INFINITY
+                    } else {
+                        f64::NEG_INFINITY
+                    };
+                    (x, inf)
+                }
+                _ => {
+                    let e1 = (g.next() % 20) as i32 - 10;
+                    let x = g.with_exp(e1);
+                    let e2 = (g.next() % 20) as i32 - 60;
+                    (x, x + g.with_exp(e2))
+                }
+            };
+            if a.is_nan() || b.is_nan() {
+                continue;
+            }
+            let (lo, hi) = (a.min(b), a.max(b));
+            if let Ok(x) = Interval::try_from((lo, hi)) {
+                return x;
+            }
+        }
+    }
+
+    /// the exact [min, max] over the four corners (finite ends only)
+    fn corners_exact(x: Interval, y: Interval, op: u8) -> Option<(Rational, Rational)> {
+        let e = [x.inf(), x.sup(), y.inf(), y.sup()];
+        if !e.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let mut v = Vec::new();
+        for u in [x.inf(), x.sup()] {
+            for w in [y.inf(), y.sup()] {
+                v.push(match op {
+                    0 => q(u) + q(w),
+                    1 => q(u) - q(w),
+                    2 => q(u) * q(w),
+                    _ => q(u) / q(w),
+                });
+            }
+        }
+        Some((
+            v.iter().min().unwrap().clone(),
+            v.iter().max().unwrap().clone(),
+        ))
+    }
+
+    /// every Ulp operation on inari intervals holds inari's result (a sound reference) and the
+    /// exact corner extremes; counts where it is strictly wider than inari
+    #[test]
+    fn ulp_ops_hold_inari_and_the_exact_corners() {
+        let n = iters(400_000);
+        let mut g = Gen::new(0x7a3b_91c4_d2e5_f607);
+        let mut wider = [0u64; 4];
+        for i in 0..n {
+            let x = rand_iv(&mut g);
+            let mut y = rand_iv(&mut g);
+            // for quotients, mostly a divisor of certain sign
+            if g.next() % 4 != 0 {
+                let (c, d) = (y.inf(), y.sup());
+                if c <= 0.0 && d >= 0.0 {
+                    let m1 = c.abs().min(d.abs()).clamp(5e-324, f64::MAX);
+                    let m2 = c.abs().max(d.abs()).max(m1);
+                    y = if g.next() & 1 == 0 {
+                        Interval::try_from((m1, m2)).unwrap()
+                    } else {
+                        Interval::try_from((-m2, -m1)).unwrap()
+                    };
+                }
+            }
+            for op in 0..4u8 {
+                let (ux, uy) = (Ulp::of(x), Ulp::of(y));
+                let u = match op {
+                    0 => ux + uy,
+                    1 => ux - uy,
+                    2 => ux * uy,
+                    _ => ux / uy,
+                };
+                let r = match op {
+                    0 => x + y,
+                    1 => x - y,
+                    2 => x * y,
+                    _ => x / y,
+                };
+                assert!(
+                    !u.lo.is_nan() && !u.hi.is_nan(),
+                    "{i} op {op}: {x:?} {y:?} -> NaN {u:?}"
+                );
+                assert!(u.lo <= u.hi, "{i} op {op}: {x:?} {y:?} -> {u:?}");
+                if !r.is_empty() {
+                    assert!(
+                        u.lo <= r.inf() && r.sup() <= u.hi,
+                        "{i} op {op}: {x:?} {y:?}: ulp {u:?} inari {r:?}"
+                    );
+                    if u.lo < r.inf() || r.sup() < u.hi {
+                        wider[op as usize] += 1;
+                    }
+                }
+                if op == 3 && !(y.inf() > 0.0 || y.sup() < 0.0) {
+                    continue;
+                }
+                if let Some((lo, hi)) = corners_exact(x, y, op) {
+                    assert!(
+                        (u.lo == f64::NEG_INFINITY || q(u.lo) <= lo)
+                            && (u.hi == f64::INFINITY || hi <= q(u.hi)),
+                        "{i} op {op}: {x:?} {y:?}: ulp {u:?} exact [{lo}, {hi}]"
+                    );
+                }
+            }
+        }
+        eprintln!("samples {n}: strictly wider than inari (add, sub, mul, div): {wider:?}");
+    }
+
+    /// chains of Ulp operations (intermediates never converted back) hold the chain of inari's
+    #[test]
+    fn ulp_chains_hold_inari_chains() {
+        let n = iters(100_000);
+        let mut g = Gen::new(0x1234_5678_9abc_def1);
+        for i in 0..n {
+            let mut x = rand_iv(&mut g);
+            let mut u = Ulp::of(x);
+            for step in 0..6 {
+                let y = rand_iv(&mut g);
+                let uy = Ulp::of(y);
+                let op = g.next() % 4;
+                let (nu, nx) = match op {
+                    0 => (u + uy, x + y),
+                    1 => (u - uy, x - y),
+                    2 => (u * uy, x * y),
+                    _ => (u / uy, x / y),
+                };
+                u = nu;
+                x = nx;
+                if x.is_empty() {
+                    break;
+                }
+                assert!(
+                    !u.lo.is_nan()
+                        && !u.hi.is_nan()
+                        && u.lo <= u.hi
+                        && u.lo != f64::INFINITY
+                        && u.hi != f64::NEG_INFINITY,
+                    "{i} step {step}: {u:?}"
+                );
+                let back = u.interval();
+                assert!(
+                    x.subset(back),
+                    "{i} step {step} op {op}: y {y:?}: ulp {u:?} inari {x:?}"
+                );
+            }
+        }
     }
 }

@@ -1243,3 +1243,174 @@ mod tests {
         assert_eq!(m.remainder(), ZERO);
     }
 }
+
+#[cfg(test)]
+/// An adversarial review's probe (2026-11-25): the prefix route on bases whose exponents tie or
+/// overlap, for f64 and MPFR intervals.
+mod prefix_order {
+    use super::*;
+    use crate::arith::mpfr::Mpi;
+    use rug::Rational;
+
+    /// prefix route vs table route on one basis: same keys, coefficients hold the exact sums,
+    /// both beyond-bounds ≥ the exact Σ over the pairs the table calls beyond
+    fn compare<I: Enclosure>(gens: &[I], m: f64, delta: f64, name: &str, rounds: usize) -> bool {
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        let basis = Basis::new(gens, m).unwrap();
+        let n = basis.keys.len();
+        let Some(pf) = basis.prefix.as_ref() else {
+            eprintln!("{name}: n {n}: no prefix (table route)");
+            return false;
+        };
+        // the prefix property against the table, independently
+        for i in 0..n {
+            for j in 0..n {
+                let within = basis.sum[i * n + j] != BEYOND;
+                assert_eq!(within, pf.pos[j] < pf.cut[i], "{name}: pair {i} {j}");
+            }
+        }
+        let ctx = Ctx::new(&basis, delta).unwrap();
+        let mut next = crate::arith::interval::xorshift(0x9d2c_5680_1b87_3e4f_u64);
+        let mut random = |terms: usize| -> Gts<I> {
+            let mut keys: Vec<u16> = (0..terms)
+                .map(|_| (next() % n as u64) as u16)
+                .chain([0])
+                .collect();
+            keys.sort_unstable();
+            keys.dedup();
+            let terms = keys
+                .into_iter()
+                .map(|k| {
+                    let r = next();
+                    let c = match r % 7 {
+                        0 => 0.0,
+                        1 => 1e300,
+                        2 => -1e-300,
+                        _ => ((next() >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 4.0,
+                    };
+                    (k, I::from_bounds(c, c).unwrap())
+                })
+                .collect();
+            Gts {
+                ctx: Some(ctx.clone()),
+                terms,
+                rem: I::zero(),
+                var: 0,
+                fac: None,
+            }
+        };
+        let mag = |g: &Gts<I>| -> Vec<I> {
+            g.terms
+                .iter()
+                .map(|(i, c)| point_mag(&c.mul_constant(&ctx.ranges[*i as usize])))
+                .collect()
+        };
+        for round in 0..rounds {
+            let (a, b) = (
+                random(1 + round % n.min(40)),
+                random(1 + (round * 7) % n.min(40)),
+            );
+            let (ma, mb) = (mag(&a), mag(&b));
+            let (tp, bp) = a.products_by_prefix(&b, &ctx, pf, &ma, &mb);
+            let (tt, bt) = a.products_by_table(&b, &ctx, &ma, &mb);
+            let keys = |t: &[(u16, I)]| t.iter().map(|e| e.0).collect::<Vec<_>>();
+            assert_eq!(keys(&tp), keys(&tt), "{name} round {round}");
+            let mut exact = vec![Rational::new(); n];
+            let mut beyond = Rational::new();
+            let mut beyond_inf = false;
+            for ((ia, ca), xa) in a.terms.iter().zip(&ma) {
+                for ((ib, cb), xb) in b.terms.iter().zip(&mb) {
+                    match basis.sum[*ia as usize * n + *ib as usize] {
+                        BEYOND => {
+                            if xa.hi().is_finite() && xb.hi().is_finite() {
+                                beyond += q(xa.hi()) * q(xb.hi())
+                            } else {
+                                beyond_inf = true
+                            }
+                        }
+                        k => exact[k as usize] += q(ca.lo()) * q(cb.lo()),
+                    }
+                }
+            }
+            for (k, c) in tp.iter().chain(&tt) {
+                let e = &exact[*k as usize];
+                assert!(
+                    (c.lo() == f64::NEG_INFINITY || q(c.lo()) <= *e)
+                        && (c.hi() == f64::INFINITY || *e <= q(c.hi())),
+                    "{name} round {round}: key {k}"
+                );
+            }
+            for bound in [bp, bt] {
+                assert!(
+                    bound == f64::INFINITY || (!beyond_inf && q(bound) >= beyond),
+                    "{name} round {round}: beyond {bound:e} < exact"
+                );
+            }
+        }
+        eprintln!("{name}: n {n}: prefix ok, {rounds} rounds");
+        true
+    }
+
+    fn bases<I: Enclosure>(tag: &str) {
+        let d = |s: &str| I::parse_decimal(s).unwrap();
+        let e = |x: f64| I::from_bounds(x, x).unwrap();
+        let w = |a: f64, b: f64| I::from_bounds(a, b).unwrap();
+        let cases: Vec<(String, Vec<I>, f64)> = vec![
+            ("1.5,3.0 M6".into(), vec![e(1.5), e(3.0)], 6.0),
+            ("1.5,3.0 M4.5".into(), vec![e(1.5), e(3.0)], 4.5),
+            ("2.0 M5".into(), vec![e(2.0)], 5.0),
+            ("0.5 M4".into(), vec![e(0.5)], 4.0),
+            (
+                "0.1,0.2,0.3 M1.2".into(),
+                vec![d("0.1"), d("0.2"), d("0.3")],
+                1.2,
+            ),
+            (
+                "1.3,1.3' overlap M5".into(),
+                vec![d("1.3"), w(1.3 - 1e-12, 1.3 + 1e-12)],
+                5.0,
+            ),
+            ("wide [1.2,1.4] M5".into(), vec![w(1.2, 1.4)], 5.0),
+            (
+                "wide [1.2,1.4],1.3 M5".into(),
+                vec![w(1.2, 1.4), d("1.3")],
+                5.0,
+            ),
+            (
+                "1.31,1.27,2.02 M6".into(),
+                vec![d("1.31"), d("1.27"), d("2.02")],
+                6.0,
+            ),
+            (
+                "1/3,2/3 M3".into(),
+                vec![d("0.3333333333333333333333"), d("0.6666666666666666666667")],
+                3.0,
+            ),
+            (
+                "0.7,1.4,2.1 M4.2".into(),
+                vec![d("0.7"), d("1.4"), d("2.1")],
+                4.2,
+            ),
+            ("2.5 M5 tie at M".into(), vec![e(2.5)], 5.0),
+            ("1.1 M3.3".into(), vec![d("1.1")], 3.3),
+        ];
+        let mut with = 0;
+        for (name, g, m) in &cases {
+            for delta in [0.6, 1e-3] {
+                if compare::<I>(g, *m, delta, &format!("{tag} {name} δ{delta}"), 200) {
+                    with += 1;
+                }
+            }
+        }
+        eprintln!(
+            "{tag}: {with} of {} cases took the prefix route",
+            2 * cases.len()
+        );
+    }
+
+    #[test]
+    fn prefix_route_on_tied_and_overlapping_exponents() {
+        bases::<Interval>("f64");
+        bases::<Mpi<128>>("mpfr");
+    }
+}
