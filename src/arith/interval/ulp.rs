@@ -1478,7 +1478,7 @@ mod against_inari {
             let x = rand_iv(&mut g);
             let mut y = rand_iv(&mut g);
             // for quotients, mostly a divisor of certain sign
-            if g.next() % 4 != 0 {
+            if !g.next().is_multiple_of(4) {
                 let (c, d) = (y.inf(), y.sup());
                 if c <= 0.0 && d >= 0.0 {
                     let m1 = c.abs().min(d.abs()).clamp(5e-324, f64::MAX);
