@@ -1121,6 +1121,9 @@ fn section4b(ctx: &mut Ctx) {
     ctx.line("");
 }
 
+/// Where the part of benches/RESULTS.md that other generators and sessions wrote begins.
+const KEPT_FROM: &str = "<!-- sets:begin -->";
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let quick = args.iter().any(|a| a == "--quick");
@@ -1178,7 +1181,16 @@ fn main() {
         loadavg()
     ));
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/RESULTS.md");
-    std::fs::write(&path, &ctx.md).expect("write RESULTS.md");
+    // the sections after these (the sets generator's, between its markers, and the later
+    // issues' measurements) are not this generator's: they are kept as they are
+    let kept = std::fs::read_to_string(&path)
+        .ok()
+        .and_then(|old| old.find(KEPT_FROM).map(|i| old[i..].to_string()));
+    let md = match kept {
+        Some(rest) => format!("{}\n{rest}", ctx.md),
+        None => ctx.md.clone(),
+    };
+    std::fs::write(&path, md).expect("write RESULTS.md");
     eprintln!("wrote {}", path.display());
     std::process::exit(0);
 }
