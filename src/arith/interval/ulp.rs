@@ -255,7 +255,7 @@ impl Mul for Ulp {
         };
         match pairs {
             Some((lo, hi)) => pair_dir(lo, hi, false),
-            None => corners(self, o, None, mul_dir),
+            None => corners(self, o),
         }
     }
 }
@@ -317,29 +317,18 @@ fn pair_dir(lo: (f64, f64), hi: (f64, f64), div: bool) -> Ulp {
     }
 }
 
-/// x ∘ y for the directed operation `op` (`op(u, v, up)`): from the endpoint pairs (lower,
-/// upper) that a case table picked, or else [min, max] over the four endpoint pairs.
+/// x·y as [min, max] of the four endpoint products, each rounded in its direction (the
+/// product when both factors reach across 0, where no pair of ends is known beforehand).
 #[inline(always)]
-fn corners(
-    x: Ulp,
-    y: Ulp,
-    pairs: Option<((f64, f64), (f64, f64))>,
-    op: impl Fn(f64, f64, bool) -> f64,
-) -> Ulp {
+fn corners(x: Ulp, y: Ulp) -> Ulp {
     let (a, b, c, d) = (x.lo, x.hi, y.lo, y.hi);
-    match pairs {
-        Some((lo, hi)) => Ulp {
-            lo: op(lo.0, lo.1, false),
-            hi: op(hi.0, hi.1, true),
-        },
-        None => Ulp {
-            lo: op(a, c, false)
-                .min(op(a, d, false))
-                .min(op(b, c, false).min(op(b, d, false))),
-            hi: op(a, c, true)
-                .max(op(a, d, true))
-                .max(op(b, c, true).max(op(b, d, true))),
-        },
+    Ulp {
+        lo: mul_dir(a, c, false)
+            .min(mul_dir(a, d, false))
+            .min(mul_dir(b, c, false).min(mul_dir(b, d, false))),
+        hi: mul_dir(a, c, true)
+            .max(mul_dir(a, d, true))
+            .max(mul_dir(b, c, true).max(mul_dir(b, d, true))),
     }
 }
 
@@ -723,7 +712,7 @@ mod tests {
             };
             if r & 4 != 0 { -x } else { x }
         };
-        let four = |x: Ulp, y: Ulp| corners(x, y, None, mul_dir);
+        let four = |x: Ulp, y: Ulp| corners(x, y);
         let tiny = |x: Ulp, y: Ulp| {
             [(x.lo, y.lo), (x.lo, y.hi), (x.hi, y.lo), (x.hi, y.hi)]
                 .iter()
@@ -1274,7 +1263,7 @@ pub(crate) mod adversarial {
                 }
             } else {
                 let r = x * y;
-                let f = corners(x, y, None, mul_dir);
+                let f = corners(x, y);
                 let tiny = [(x.lo, y.lo), (x.lo, y.hi), (x.hi, y.lo), (x.hi, y.hi)]
                     .iter()
                     .any(|&(u, v)| u != 0.0 && v != 0.0 && (u * v).abs() < RESIDUAL_EXACT);
