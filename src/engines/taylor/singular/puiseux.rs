@@ -1080,17 +1080,32 @@ mod tests {
         Interval::try_from((a, b)).unwrap()
     }
 
-    /// The products by the exponents' order and by the table of sums, on random generalized
-    /// polynomials with point coefficients (every sum of products exact as a rational): each
-    /// coefficient contains the exact Σ c_a·c_b over its pairs, both routes give the same keys,
-    /// and the bound of the terms beyond the cut-off is at least the exact
-    /// Σ |c_a|δ^α_a·|c_b|δ^α_b over the pairs beyond it (and not far above). δ = 0.6 makes
-    /// those terms large. A prefix cut one position off, a suffix sum from the wrong term or
-    /// a bound left out fails here.
+    /// The prefix order is refused where a row's sums within the cut-off are not a prefix in
+    /// the exponents' order (a table no basis of distinct exponents gives, made by hand here:
+    /// key 1 sums with key 2 beyond the cut-off but with key 3, of a larger exponent, within
+    /// it), and kept where they are.
+    #[test]
+    fn the_prefix_order_is_checked_row_by_row() {
+        let exps = [iv(0.0, 0.0), iv(1.0, 1.0), iv(1.5, 1.5), iv(2.0, 2.0)];
+        let b = BEYOND;
+        let prefix = [0, 1, 2, 3, 1, 3, b, b, 2, b, b, b, 3, b, b, b];
+        let pf = Prefix::new(&exps, &prefix).expect("every row a prefix");
+        assert_eq!(pf.cut, vec![4, 2, 1, 1]);
+        let mut gap = prefix;
+        gap[4 + 2] = b;
+        gap[4 + 3] = 3;
+        assert!(Prefix::new(&exps, &gap).is_none());
+    }
+
+    /// The products by the exponents' order and by the table of sums ([`prefix_order::compare`]),
+    /// on the Table 1 exponents with δ = 0.6 (the terms beyond the cut-off large), for which the
+    /// prefix order must hold: each coefficient contains the exact Σ c_a·c_b over its pairs,
+    /// both routes give the same keys, and the bound of the terms beyond the cut-off is at
+    /// least the exact Σ |c_a|δ^α_a·|c_b|δ^α_b over the pairs beyond it (and not far above). A
+    /// prefix cut one position off, a suffix sum from the wrong term or a bound left out fails
+    /// here.
     #[test]
     fn prefix_products_equal_the_pair_table_and_the_exact_sums() {
-        use rug::Rational;
-        let q = |x: f64| Rational::from_f64(x).unwrap();
         let gens = [
             Interval::parse_decimal("1.31").unwrap(),
             Interval::parse_decimal("1.27").unwrap(),
@@ -1103,72 +1118,13 @@ mod tests {
             .expect("distinct exponents: the prefix order holds");
         let n = basis.keys.len();
         assert!(pf.cut.iter().any(|&c| (c as usize) < n) && pf.cut[0] as usize == n);
-        let ctx = Ctx::new(&basis, 0.6).unwrap();
-        let mut next = crate::arith::interval::xorshift(0x51ed2701f3a5c7b9_u64);
-        let mut random = |terms: usize| -> Gts {
-            let mut keys: Vec<u16> = (0..terms)
-                .map(|_| (next() % n as u64) as u16)
-                .chain([0])
-                .collect();
-            keys.sort_unstable();
-            keys.dedup();
-            let terms = keys
-                .into_iter()
-                .map(|k| {
-                    let c = ((next() >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 4.0;
-                    (k, iv(c, c))
-                })
-                .collect();
-            Gts {
-                ctx: Some(ctx.clone()),
-                terms,
-                rem: ZERO,
-                var: 0,
-                fac: None,
-            }
-        };
-        let mag = |g: &Gts| -> Vec<Interval> {
-            g.terms
-                .iter()
-                .map(|(i, c)| point_mag(&c.mul_constant(&ctx.ranges[*i as usize])))
-                .collect()
-        };
-        for round in 0..300 {
-            let (a, b) = (random(1 + round % 30), random(1 + (round * 7) % 30));
-            let (ma, mb) = (mag(&a), mag(&b));
-            let (tp, bp) = a.products_by_prefix(&b, &ctx, pf, &ma, &mb);
-            let (tt, bt) = a.products_by_table(&b, &ctx, &ma, &mb);
-            let keys = |t: &[(u16, Interval)]| t.iter().map(|e| e.0).collect::<Vec<_>>();
-            assert_eq!(keys(&tp), keys(&tt), "round {round}: the same terms");
-            // the exact sums
-            let mut exact = vec![Rational::new(); n];
-            let mut beyond = Rational::new();
-            for ((ia, ca), xa) in a.terms.iter().zip(&ma) {
-                for ((ib, cb), xb) in b.terms.iter().zip(&mb) {
-                    match basis.sum[*ia as usize * n + *ib as usize] {
-                        BEYOND => beyond += q(xa.sup()) * q(xb.sup()),
-                        k => exact[k as usize] += q(ca.inf()) * q(cb.inf()),
-                    }
-                }
-            }
-            for (k, c) in tp.iter().chain(&tt) {
-                let e = &exact[*k as usize];
-                assert!(
-                    q(c.inf()) <= *e && *e <= q(c.sup()),
-                    "round {round}: key {k}: {c:?}"
-                );
-            }
-            for bound in [bp, bt] {
-                assert!(
-                    q(bound) >= beyond,
-                    "round {round}: beyond {bound:e} < the exact sum"
-                );
-                assert!(
-                    q(bound) <= beyond.clone() * q(1.0 + 1e-12) + q(1e-300),
-                    "round {round}: beyond {bound:e} far above the exact sum"
-                );
-            }
-        }
+        assert!(super::prefix_order::compare(
+            &gens,
+            6.0,
+            0.6,
+            "Table 1 exponents",
+            300
+        ));
     }
 
     /// y = 0.7 + 0.3u − 2u^1.31 − 0.1u² on [0, δ] with cut-off M; then y^1.5, 1/y, ∫y and the
@@ -1254,7 +1210,13 @@ mod prefix_order {
 
     /// prefix route vs table route on one basis: same keys, coefficients hold the exact sums,
     /// both beyond-bounds ≥ the exact Σ over the pairs the table calls beyond
-    fn compare<I: Enclosure>(gens: &[I], m: f64, delta: f64, name: &str, rounds: usize) -> bool {
+    pub(super) fn compare<I: Enclosure>(
+        gens: &[I],
+        m: f64,
+        delta: f64,
+        name: &str,
+        rounds: usize,
+    ) -> bool {
         let q = |x: f64| Rational::from_f64(x).unwrap();
         let basis = Basis::new(gens, m).unwrap();
         let n = basis.keys.len();
@@ -1344,6 +1306,11 @@ mod prefix_order {
                 assert!(
                     bound == f64::INFINITY || (!beyond_inf && q(bound) >= beyond),
                     "{name} round {round}: beyond {bound:e} < exact"
+                );
+                // and not far above it (where finite: a sum reaching ±∞ bounds nothing tighter)
+                assert!(
+                    !bound.is_finite() || q(bound) <= beyond.clone() * q(1.0 + 1e-12) + q(1e-300),
+                    "{name} round {round}: beyond {bound:e} far above the exact sum"
                 );
             }
         }
