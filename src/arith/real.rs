@@ -203,6 +203,12 @@ pub trait Dot<R>: Sized {
     {
         self.add_prod(&a.mul_constant(f), b);
     }
+    /// Adds c·x for a constant c of the type (a tape constant: for a dual, one with a zero
+    /// derivative part). Accumulators whose general product is costly override it.
+    #[inline]
+    fn add_scaled(&mut self, c: &R, x: &R) {
+        self.add_prod(c, x);
+    }
     /// The sum (for an interval type: an enclosure of the exact sum of the exact products).
     fn sum(self) -> R;
 }
@@ -217,6 +223,13 @@ impl<R: Real> Dot<R> for PlainDot<R> {
     }
     fn add_prod(&mut self, a: &R, b: &R) {
         let p = a.clone() * b.clone();
+        self.0 = Some(match self.0.take() {
+            Some(s) => s + p,
+            None => p,
+        });
+    }
+    fn add_scaled(&mut self, c: &R, x: &R) {
+        let p = x.mul_constant(c);
         self.0 = Some(match self.0.take() {
             Some(s) => s + p,
             None => p,

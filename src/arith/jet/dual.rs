@@ -186,6 +186,19 @@ impl<R: Real, const M: usize> Dot<Dual<R, M>> for DualDot<R, M> {
             self.d[i].add_prod(&a.d[i], &b.v);
         }
     }
+    /// c·x for a constant c (zero derivative part): c·v + Σ c·dᵢ εᵢ, without the products by
+    /// c's zero parts; a c with a derivative part takes the full product.
+    #[inline]
+    fn add_scaled(&mut self, c: &Dual<R, M>, x: &Dual<R, M>) {
+        if c.d.iter().all(|z| z.lo() == 0.0 && z.hi() == 0.0) {
+            self.v.add_scaled(&c.v, &x.v);
+            for i in 0..M {
+                self.d[i].add_scaled(&c.v, &x.d[i]);
+            }
+        } else {
+            self.add_prod(c, x);
+        }
+    }
     #[inline]
     fn sum(self) -> Dual<R, M> {
         let mut it = self.d.into_iter();
@@ -341,6 +354,39 @@ mod tests {
             (t.v, 30.0),
             (t.d[0], 21.0),
             (t.d[1], -2.5),
+        ] {
+            assert!(got.contains(want) && got.wid() < 1e-12, "{got:?} ∌ {want}");
+        }
+    }
+
+    /// c·x added by `add_scaled` (a tape constant c, the fused linear forms) is the product
+    /// c·x: for a constant c without the products by its zero derivative parts, for a c with
+    /// derivatives by the full product rule.
+    #[test]
+    fn scaled_terms_of_duals_are_the_products() {
+        use crate::arith::Dot;
+        use inari::Interval;
+        let p = |x: f64| Interval::try_from((x, x)).unwrap();
+        let dual = |v: f64, d0: f64, d1: f64| Dual::<Interval, 2> {
+            v: p(v),
+            d: [p(d0), p(d1)],
+        };
+        let x = dual(3.0, 0.5, -2.0);
+        // 4x − 0.5x = 3.5x; then (2 + ε₀)·x: v 6, d (2·0.5 + 3, 2·(−2))
+        let mut s = DualDot::<Interval, 2>::new();
+        s.add_scaled(&dual(4.0, 0.0, 0.0), &x);
+        s.add_scaled(&dual(-0.5, 0.0, 0.0), &x);
+        let s = s.sum();
+        let mut t = DualDot::<Interval, 2>::new();
+        t.add_scaled(&dual(2.0, 1.0, 0.0), &x);
+        let t = t.sum();
+        for (got, want) in [
+            (s.v, 10.5),
+            (s.d[0], 1.75),
+            (s.d[1], -7.0),
+            (t.v, 6.0),
+            (t.d[0], 4.0),
+            (t.d[1], -4.0),
         ] {
             assert!(got.contains(want) && got.wid() < 1e-12, "{got:?} ∌ {want}");
         }

@@ -16,6 +16,7 @@
 
 pub mod event;
 pub mod flow;
+pub mod linear;
 pub mod lohner;
 pub mod newton;
 pub mod rec;
