@@ -16,16 +16,26 @@
 //! y = c₀ + Σⱼ cⱼ·x_{nⱼ}      (y_k = Σⱼ cⱼ·(x_{nⱼ})_k for k ≥ 1, plus c₀ at k = 0)
 //! ```
 //!
-//! over the chain's non-linear operands ("leaves"), evaluated as one sum of products by the
-//! type's [`Dot`](crate::arith::Dot) accumulator: one bound of all rounding errors instead of
-//! one outward rounding per operation. The coefficients cⱼ are products and sums of the tape's
-//! constants, enclosed in the recording type (each tape constant encloses one real number, so
-//! e.g. x − c·x = (1 − c)·x holds for that number and (1 − [c])·x encloses it).
+//! over the chain's non-linear operands ("leaves"), evaluated as the chain's products and sums
+//! in turn or as one sum of products by the type's [`Dot`](crate::arith::Dot) accumulator
+//! ([`super::tape::Rounding`]). The coefficients cⱼ are products of the tape's constants and
+//! ±1, enclosed in the recording type.
 //!
-//! Which nodes fuse: a linear node (not constant in time) whose every user is itself a linear
-//! node and which is no output is *absorbed*: its form is written into each user's and it is
-//! no longer computed. Every other linear node whose form absorbed one becomes an
-//! [`Op::Lin`](super::tape::Op::Lin).
+//! What keeps a form an enclosure of the chain's value, whatever the constants:
+//! - **A tree, not a graph.** A linear node is *absorbed* (written into its user's form and no
+//!   longer computed) only when it has exactly one user, a linear node that is not constant in
+//!   time, and is no output. A node with several users stays computed and is a leaf of each:
+//!   nothing is expanded twice, so a form has at most one term per leaf occurrence of its
+//!   chain (no blow-up on shared sums such as y ← y + y).
+//! - **No merging of a repeated leaf.** x − c·x stays two terms (1, x) and (−c, x), not
+//!   (1 − c)·x: a node may stand for more than one function. Common subexpressions are keyed
+//!   by the constants' bits, so with parameters given as ranges |x|^(n−1)x and |x|^(p−1)x with
+//!   n, p ∈ [1.1, 1.3] are one node, and merging would cancel their difference to an exact 0
+//!   (found by an adversarial review; test `a_merged_node_does_not_cancel`).
+//! - **A wide constant is not distributed.** c·(x + y) as c·x + c·y loses the dependency on c
+//!   (sub-distributivity): with c = [1, 2], x = 10⁶, y = 1 − 10⁶ the chain gives [1, 2], the
+//!   distributed form ≈ ±10⁶. A product by a constant wider than a few ulps keeps its operand
+//!   as a leaf (`thin`); the decimal enclosures of point parameters are 1 ulp wide.
 
 use super::tape::{Op, operands};
 use crate::arith::Real;
@@ -38,7 +48,7 @@ pub struct Lin {
     pub terms: Vec<(usize, usize)>,
 }
 
-/// A linear form while it is built: the shift and one coefficient per leaf node.
+/// A linear form while it is built: the shift and one coefficient per leaf occurrence.
 struct Form<R> {
     shift: Option<R>,
     terms: Vec<(usize, R)>,
@@ -60,12 +70,9 @@ impl<R: Real> Form<R> {
             (None, Some(b)) => Some(sgn(b)),
             (Some(a), Some(b)) => Some(a + sgn(b)),
         };
-        for (n, c) in other.terms {
-            match self.terms.iter_mut().find(|(m, _)| *m == n) {
-                Some((_, d)) => *d = d.clone() + sgn(c),
-                None => self.terms.push((n, sgn(c))),
-            }
-        }
+        // a repeated leaf stays two terms (see the module doc)
+        self.terms
+            .extend(other.terms.into_iter().map(|(n, c)| (n, sgn(c))));
         self
     }
 
@@ -80,6 +87,13 @@ impl<R: Real> Form<R> {
                 .collect(),
         }
     }
+}
+
+/// Whether a constant is a point or a few ulps wide: relative radius ≤ 8ε (a decimal
+/// parameter's enclosure is one ulp), bounded.
+fn thin<R: Real>(c: &R) -> bool {
+    let (lo, hi) = (c.lo(), c.hi());
+    lo.is_finite() && hi.is_finite() && hi - lo <= 16.0 * f64::EPSILON * lo.abs().max(hi.abs())
 }
 
 /// The tape after fusion: its operations, the forms of its [`Op::Lin`] nodes, and where each
@@ -113,12 +127,18 @@ pub(super) fn fuse<R: Real>(
             users[a].push(j);
         }
     }
+    // a product by a constant of more than a few ulps keeps its operand (see the module doc)
+    let distributes = |u: usize| match ops[u] {
+        Op::Scale(_, c) => thin(&consts[c]),
+        _ => true,
+    };
     let absorbed: Vec<bool> = (0..n)
         .map(|i| {
             linear(i)
                 && !outputs.contains(&i)
-                && !users[i].is_empty()
-                && users[i].iter().all(|&u| linear(u))
+                && users[i].len() == 1
+                && linear(users[i][0])
+                && distributes(users[i][0])
         })
         .collect();
     // the form of node i's operation, expanding absorbed operands
@@ -208,8 +228,9 @@ mod tests {
     /// A field of linear chains around the products p = x₀x₁ and s = x₁² (every constant a
     /// double, so that the exact coefficients are rationals):
     ///
-    /// a = 2x₀ − 3(x₁ + x₀) (also an output), f₀ = (a + 5)/2 − p,
-    /// b = p/4 − p (used by a product), m = b·x₀, f₁ = −(b + s) + m/8.
+    /// a = 2x₀ − 3(x₁ + x₀) (also an output, and a leaf of f₀), f₀ = (a + 5)/2 − p,
+    /// b = p/4 − p (a repeated leaf; used by a product and a sum), m = b·x₀,
+    /// f₁ = −(b + s) + m/8.
     fn chains(rounding: Rounding) -> Tape<Interval, 2> {
         Tape::<Interval, 2>::record(|v| {
             let (x0, x1) = (v[0].clone(), v[1].clone());
@@ -357,5 +378,96 @@ mod tests {
             let b = each.jet(&x, 8, &mut w2).unwrap();
             assert_eq!(a, b, "{x:?}");
         }
+        // fusing again only changes the rounding
+        let once = each.fused(Rounding::Once);
+        assert_eq!(once.ops(), each.ops());
+    }
+
+    fn iv(a: f64, b: f64) -> Interval {
+        Interval::try_from((a, b)).unwrap()
+    }
+
+    /// Two parameters given as the same range are one node after common subexpressions
+    /// (constants are keyed by their bits): |x|^(n−1)x − |x|^(p−1)x with n, p ∈ [1.1, 1.3] is
+    /// −0.319 at x = 2 for n = 1.1, p = 1.3, and must not cancel to an exact 0; likewise
+    /// κ₁x − κ₂x for κ₁, κ₂ ∈ [0.9, 1.1] (−0.2 at x = 1) with κx kept as a leaf by a product
+    /// (found by an adversarial review: merging the repeated leaf gave [0, 0]).
+    #[test]
+    fn a_merged_node_does_not_cancel() {
+        let r = iv(1.1, 1.3);
+        let powers = Tape::<Interval, 1>::record(|v| {
+            let a = Scalar::spow(&v[0], &r);
+            let b = Scalar::spow(&v[0], &r);
+            vec![(a - b).scale(&c(1.0))]
+        });
+        // the values for (n, p) = (1.1, 1.3) and (1.3, 1.1): ±(2^1.1 − 2^1.3) ≈ ∓0.3187, the
+        // ends of the exact range (f64 powers, hence the margin of 1e-12)
+        let want = 2f64.powf(1.1) - 2f64.powf(1.3);
+        for rounding in [Rounding::Each, Rounding::Once] {
+            let e = powers.fused(rounding).eval(&[c(2.0)]);
+            assert!(
+                e[0].inf() <= want + 1e-12 && e[0].sup() >= -want - 1e-12,
+                "{rounding:?}: {:?}",
+                e[0]
+            );
+        }
+        let w = iv(0.9, 1.1);
+        let scaled = Tape::<Interval, 2>::record(|v| {
+            let a = v[0].scale(&w);
+            let b = v[0].scale(&w);
+            let m = a.clone() * v[1].clone();
+            vec![(a - b).scale(&c(1.0)), m]
+        });
+        for rounding in [Rounding::Each, Rounding::Once] {
+            let t = scaled.fused(rounding);
+            assert!(t.ops().iter().any(|o| matches!(o, Op::Lin(_))), "{t:?}");
+            let e = t.eval(&[c(1.0), c(1.0)]);
+            assert!(
+                e[0].contains(-0.2) && e[0].contains(0.2),
+                "{rounding:?}: {:?}",
+                e[0]
+            );
+        }
+    }
+
+    /// c·(x + y) is not rewritten c·x + c·y for a wide c (the dependency on c would be lost):
+    /// c = [1, 2], x = 10⁶, y = 1 − 10⁶ gives [1, 2] fused as recorded, not ±10⁶.
+    #[test]
+    fn a_wide_constant_is_not_distributed() {
+        let w = iv(1.0, 2.0);
+        let rec = Tape::<Interval, 2>::record(|v| {
+            let s = (v[0].clone() + v[1].clone()).scale(&w);
+            let p = v[0].clone() * v[1].clone();
+            vec![s.clone() + p.clone(), p]
+        });
+        let x = [c(1e6), c(-1e6 + 1.0)];
+        let a = rec.eval(&x);
+        for rounding in [Rounding::Each, Rounding::Once] {
+            let b = rec.fused(rounding).eval(&x);
+            assert!(
+                b[0].wid() <= 2.0 * a[0].wid(),
+                "{rounding:?}: {:?} vs {:?}",
+                b[0],
+                a[0]
+            );
+        }
+    }
+
+    /// A shared sum is computed once, not expanded into each user: y ← y + y twenty times fuses
+    /// into a tape of the same length, with the exact value 2^20·x (an expansion per use took
+    /// 2^d steps: 24 ms at d = 20, 30 s at d = 30).
+    #[test]
+    fn shared_sums_are_not_expanded() {
+        let rec = Tape::<Interval, 1>::record(|v| {
+            let mut y = v[0].clone();
+            for _ in 0..20 {
+                y = y.clone() + y;
+            }
+            vec![y]
+        });
+        let t = rec.fused(Rounding::Once);
+        assert_eq!(t.len(), rec.len());
+        let e = t.eval(&[c(3.0)]);
+        assert!(e[0].contains(3.0 * 2f64.powi(20)), "{:?}", e[0]);
     }
 }

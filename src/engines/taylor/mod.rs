@@ -17,6 +17,8 @@
 pub mod event;
 pub mod flow;
 pub mod linear;
+#[cfg(test)]
+mod linear_review;
 pub mod lohner;
 pub mod newton;
 pub mod rec;

@@ -161,12 +161,13 @@ pub struct Tapes<const N: usize, I: Enclosure = Interval> {
 impl<const N: usize, I: Enclosure> Tapes<N, I> {
     /// The jet tapes of an interval tape (constants converted exactly: same endpoints).
     ///
-    /// Measured on the 28 Table 1 cases (`cargo run --release --example singular`, 2026-11-25):
-    /// with the Jacobian's forms rounded once, e and T_s the same to 4 digits and 1–2 % less
-    /// time; with the a-priori box's forms rounded once too, 1.5 % less again but e 0.98–1.01×
-    /// (Maxwell DSS v0 = 0.1: 1.35×, its T_s 0.85×); every form rounded once, e wider by up to
-    /// 1.35× (the midpoint's jet is rounding only). Every form rounded in turn: the same
-    /// enclosures as the chains (to 4 digits), no measurable change in time.
+    /// Measured on the 28 Table 1 cases (`cargo run --release --example singular`,
+    /// 2026-11-25; benches/RESULTS.md "Linear chains fused"): the Jacobian's forms rounded
+    /// once, time × 0.98, pieces and widths the same; the a-priori box's too, 1.5 % less again
+    /// but Maxwell DSS v0 = 0.1 flips to another event path, e 1.35× wider; the jets over X
+    /// too, 3–4 % less in all, e 0.98–1.01×; the midpoint's too, e 1.07–1.15× wider on every
+    /// case (its width is all rounding). Every form rounded in turn: the same enclosures, no
+    /// measurable change in time.
     pub fn of(tape: &Tape<I, N>) -> Self {
         Self {
             plain: tape.fused(Rounding::Each).map(|c| c.to_jet()),
