@@ -808,6 +808,43 @@ mod tests {
         }
     }
 
+    /// Which runs combine into a mean-value form ([`usable`]): all with a slope; or one range
+    /// without a slope, by the partial form (not for the band, which needs the slope); never
+    /// one without a slope among several (the partial form would need every input's partial
+    /// derivatives at once) — there the caller must be told, with the reason.
+    #[test]
+    fn runs_without_a_slope_are_refused_where_no_form_holds() {
+        let run = |input: usize, slope: bool| VarRun {
+            ts: iv("3"),
+            e: iv("0.5"),
+            slope: slope.then(|| Slope {
+                input,
+                ts: iv("0.1"),
+                e: iv("-0.2"),
+            }),
+            dv_du: iv("1"),
+            dv_dt: iv("0.01"),
+            steps: 10,
+        };
+        let ok = |runs: Vec<VarRun>, partial: bool| usable(runs, partial).map(|r| r.len());
+        assert_eq!(ok(vec![run(0, true), run(1, true)], false), Ok(2));
+        assert_eq!(ok(vec![run(0, true), run(1, true)], true), Ok(2));
+        // one range, no slope: the partial form where allowed, else refused
+        assert_eq!(ok(vec![run(0, false)], true), Ok(1));
+        // among several, or for the band: refused with the reason
+        for (runs, partial) in [
+            (vec![run(0, true), run(1, false)], true),
+            (vec![run(0, false), run(1, false)], true),
+            (vec![run(0, false)], false),
+            (vec![run(0, true), run(1, false)], false),
+        ] {
+            match usable(runs, partial) {
+                Err(e) => assert_eq!(e.reason, NO_DERIVATIVE),
+                Ok(r) => panic!("{} runs accepted (partial {partial})", r.len()),
+            }
+        }
+    }
+
     /// The partial form on a closed form: V(T, u) = u + T and T_s(u) = u² on u ∈ [0, 1], so
     /// e(u) = u + u² fills [0, 2]; around û = 1/2 with [∂V/∂u] = [dV/dT] = 1 and [T_s] = [0, 1]
     /// the form must contain [0, 2] (without its time term it would be [1/4, 5/4]).
