@@ -325,26 +325,29 @@ mod tests {
         }
     }
 
+    /// The dual (v; d₀, d₁) of point intervals.
+    fn dual(v: f64, d0: f64, d1: f64) -> Dual<inari::Interval, 2> {
+        let p = |x: f64| inari::Interval::try_from((x, x)).unwrap();
+        Dual {
+            v: p(v),
+            d: [p(d0), p(d1)],
+        }
+    }
+
     /// Σ f·a·b over duals (the three-way terms of the power recurrence) is the product rule
     /// applied to each term, for a constant factor f and for one with derivatives; checked on
     /// exactly representable values.
     #[test]
     fn three_way_terms_of_duals_follow_the_product_rule() {
         use crate::arith::Dot;
-        use inari::Interval;
-        let p = |x: f64| Interval::try_from((x, x)).unwrap();
-        let dual = |v: f64, d0: f64, d1: f64| Dual::<Interval, 2> {
-            v: p(v),
-            d: [p(d0), p(d1)],
-        };
         let (a, b) = (dual(2.0, 1.0, 0.5), dual(3.0, 0.0, -1.0));
         // f constant: 5ab + ab = 6ab, (6ab)' = 6(a′b + ab′)
-        let mut s = DualDot::<Interval, 2>::new();
+        let mut s = DualDot::<inari::Interval, 2>::new();
         s.add_prod3(&dual(5.0, 0.0, 0.0), &a, &b);
         s.add_prod(&a, &b);
         let s = s.sum();
         // f = (5, 1, 0): (fab)' = f′ab + fa′b + fab′
-        let mut t = DualDot::<Interval, 2>::new();
+        let mut t = DualDot::<inari::Interval, 2>::new();
         t.add_prod3(&dual(5.0, 1.0, 0.0), &a, &b);
         let t = t.sum();
         for (got, want) in [
@@ -365,19 +368,13 @@ mod tests {
     #[test]
     fn scaled_terms_of_duals_are_the_products() {
         use crate::arith::Dot;
-        use inari::Interval;
-        let p = |x: f64| Interval::try_from((x, x)).unwrap();
-        let dual = |v: f64, d0: f64, d1: f64| Dual::<Interval, 2> {
-            v: p(v),
-            d: [p(d0), p(d1)],
-        };
         let x = dual(3.0, 0.5, -2.0);
         // 4x − 0.5x = 3.5x; then (2 + ε₀)·x: v 6, d (2·0.5 + 3, 2·(−2))
-        let mut s = DualDot::<Interval, 2>::new();
+        let mut s = DualDot::<inari::Interval, 2>::new();
         s.add_scaled(&dual(4.0, 0.0, 0.0), &x);
         s.add_scaled(&dual(-0.5, 0.0, 0.0), &x);
         let s = s.sum();
-        let mut t = DualDot::<Interval, 2>::new();
+        let mut t = DualDot::<inari::Interval, 2>::new();
         t.add_scaled(&dual(2.0, 1.0, 0.0), &x);
         let t = t.sum();
         for (got, want) in [
