@@ -298,7 +298,9 @@ fn the_start_step_keeps_the_invariants_of_a_coupled_pair() {
 /// t(u) = t₀ + c·u + d·u^1.5 on [0, δ] with interval coefficients (a band of functions): the
 /// exit bracket must hold every u where a function of the band meets t1 — from the estimate,
 /// from a hint that misses u* (its ends fail the checks: the bisection starts from [0, δ]),
-/// and from none — and the estimate's bracket is as tight as the plain bisection's.
+/// from none, placed directly from the estimate ([`exit_direct`]) and from a poor estimate
+/// (half the true u: its checks fail, or its bracket still holds the band) — and the
+/// estimate's brackets are as tight as the plain bisection's.
 #[test]
 fn the_exit_bracket_holds_every_crossing_of_the_band() {
     let basis = Basis::<Interval>::new(&[iv::<Interval>(1.5, 1.5)], 4.0).unwrap();
@@ -327,25 +329,88 @@ fn the_exit_bracket_holds_every_crossing_of_the_band() {
     let (first, _) = solve(1.1, 3.0);
     let (_, last) = solve(0.9, 2.0);
     let plain = exit_parameter_from(&t, t1, delta, None).unwrap();
-    for (what, hint) in [
-        ("estimate", exit_guess(&t, t1, delta)),
-        ("missing hint", Some((0.8 * delta, 0.9 * delta))),
-        ("none", None),
-    ] {
-        let b = exit_parameter_from(&t, t1, delta, hint).unwrap();
+    let estimate = exit_estimate(&t, t1, delta).expect("an estimate");
+    let guess = exit_guess(&t, delta, estimate);
+    // the band's width varies along u: the direct bracket may fail its checks (then the
+    // bisections run), never hold a wrong bracket
+    let direct = exit_direct(&t, t1, delta, estimate);
+    // a poor estimate likewise
+    let off = exit_direct(&t, t1, delta, 0.5 * estimate);
+    for (what, b) in [
+        ("estimate", exit_parameter_from(&t, t1, delta, guess)),
+        (
+            "missing hint",
+            exit_parameter_from(&t, t1, delta, Some((0.8 * delta, 0.9 * delta))),
+        ),
+        ("none", exit_parameter_from(&t, t1, delta, None)),
+        ("exit_parameter", exit_parameter(&t, t1, delta)),
+    ]
+    .into_iter()
+    .chain(direct.map(|b| ("direct", Some(b))))
+    .chain(off.map(|b| ("direct from a poor estimate", Some(b))))
+    {
+        let b = b.unwrap();
         assert!(
             b.inf() <= first && last <= b.sup(),
             "{what}: {b:?} ⊉ [{first}, {last}]"
         );
         assert!(
-            b.wid() <= 1.01 * plain.wid(),
+            off.is_some_and(|o| o.same(&b)) || b.wid() <= 1.01 * plain.wid(),
             "{what}: {b:?} wider than {plain:?}"
         );
     }
-    assert!(
-        exit_guess(&t, t1, delta).is_some(),
-        "the estimate is used here"
-    );
+    assert!(guess.is_some(), "the estimate is used here");
+}
+
+/// The direct exit bracket ([`exit_direct`]) on a thin t(u) = 2 + c·u + d·u^1.5 + [−r, r]
+/// (point coefficients, a remainder r): it passes its checks from the estimate, holds the
+/// exact u* of 2 + c·u* + d·u*^1.5 = t1 (200-bit MPFR bisection) with room for the remainder,
+/// and is no wider than the bisections' bracket by more than 3 % and a few ulps; from a poor
+/// estimate it fails or still holds u*.
+#[test]
+fn the_direct_exit_bracket_holds_the_exact_parameter() {
+    let basis = Basis::<Interval>::new(&[iv::<Interval>(1.5, 1.5)], 4.0).unwrap();
+    let delta = 1e-3;
+    let ctx = Ctx::new(&basis, delta).unwrap();
+    let u = Gts::variable(&ctx, 1);
+    let u15 = Real::apow(&u, &Gts::constant(iv(1.5, 1.5)));
+    for (c, d, r) in [(1.0, 2.5, 0.0), (0.7, -3.0, 1e-15), (1.3, 40.0, 1e-13)] {
+        let t = Gts::constant_in(&ctx, iv(2.0, 2.0))
+            + u.clone() * Gts::from_exact_f64(c)
+            + u15.clone() * Gts::from_exact_f64(d)
+            + Gts::constant_in(&ctx, iv(-r, r));
+        let t1 = 2.0 + 4e-4;
+        // u* for the remainder at either end: t(u) = t1 ∓ r, exactly in rationals
+        let root = |shift: f64| {
+            let (mut a, mut b) = (Float::with_val(200, 0), Float::with_val(200, delta));
+            let target = Float::with_val(200, t1) - Float::with_val(200, 2.0) - shift;
+            for _ in 0..190 {
+                let m: Float = Float::with_val(200, &a + &b) / 2u32;
+                let v = Float::with_val(200, c) * &m
+                    + Float::with_val(200, d) * m.clone().pow(Float::with_val(200, 1.5));
+                if v < target { a = m } else { b = m }
+            }
+            a
+        };
+        let (first, last) = (root(r), root(-r));
+        let plain = exit_parameter_from(&t, t1, delta, None).unwrap();
+        let estimate = exit_estimate(&t, t1, delta).expect("an estimate");
+        let b = exit_direct(&t, t1, delta, estimate).expect("the direct bracket passes");
+        assert!(
+            Float::with_val(200, b.inf()) <= first && last <= Float::with_val(200, b.sup()),
+            "c {c} d {d} r {r}: {b:?} ⊉ [{first}, {last}]"
+        );
+        assert!(
+            b.wid() <= 1.03 * plain.wid() + 16.0 * f64::EPSILON * b.sup(),
+            "c {c} d {d} r {r}: {b:?} wider than {plain:?}"
+        );
+        if let Some(o) = exit_direct(&t, t1, delta, 0.5 * estimate) {
+            assert!(
+                Float::with_val(200, o.inf()) <= first && last <= Float::with_val(200, o.sup()),
+                "c {c} d {d}: poor estimate {o:?}"
+            );
+        }
+    }
 }
 
 /// u^α by the basis' table of powers ([`Ctx::powers`]) holds u^α computed with MPFR at 200 bits,
