@@ -198,7 +198,7 @@ impl<const N: usize, I: Enclosure> SingularTape<N, I> {
             .into_iter()
             .filter(|q| q.lo() > 0.0)
             .collect();
-        let basis = Basis::new(&gens, opts.max_exp)?;
+        let basis = Basis::cached(&gens, opts.max_exp)?;
         if trace_sing() {
             eprintln!(
                 "singular basis: generators {gens:?}, {} exponents up to M",
@@ -751,7 +751,7 @@ impl<const N: usize, I: Enclosure> Singular<N, I> {
         }
         let basis = self
             .start
-            .get_or_insert_with(|| Basis::new(gens, m))
+            .get_or_insert_with(|| Basis::cached(gens, m))
             .clone()?;
         let clock = std::time::Instant::now();
         let out = start::start_step(
