@@ -133,9 +133,9 @@ impl<'a, const N: usize, I: Enclosure> Ctx<'a, N, I> {
     /// (F, V) over the flow's enclosure at the times `t`.
     fn fv(&self, t: &I) -> ([I; N], I, I) {
         let s = self.piece.enclose(t);
-        let mut o = self.tape.eval(&s);
-        let v = o.swap_remove(N + 1);
-        let f = o.swap_remove(N);
+        let mut o = self.tape.eval_extra(&s);
+        let v = o.swap_remove(1);
+        let f = o.swap_remove(0);
         (s, f, v)
     }
     /// (F, V) over the times `t` in the centred form of second order, m the midpoint of T:
@@ -201,7 +201,7 @@ impl<'a, const N: usize, I: Enclosure> Ctx<'a, N, I> {
         // the closures share `self`: g needs only the flow, g′ the jet workspace
         let (tape, piece) = (self.tape, self.piece);
         let ws = &mut *self.ws;
-        let g = |m: &I| tape.eval(&piece.enclose(m)).swap_remove(j) * s.clone();
+        let g = |m: &I| tape.eval_extra(&piece.enclose(m)).swap_remove(j - N) * s.clone();
         let dg = |t: &I| {
             tape.jet(&piece.enclose(t), 1, ws).ok()?;
             let d = tape.output_coef(ws, 1, j, 1) * s.clone();
