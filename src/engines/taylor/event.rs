@@ -292,6 +292,13 @@ pub fn scan_piece<const N: usize, I: Enclosure>(
     ctx.scan(t, 0)
 }
 
+/// The condition F ≤ 0 ∧ V ≥ 0 provably fails at every point of the box `x` (F > 0 or V < 0
+/// on all of it).
+pub fn excluded<const N: usize, I: Enclosure>(tape: &Tape<I, N>, x: &[I; N]) -> bool {
+    let o = tape.eval_extra(x);
+    o[0].lo() > 0.0 || o[1].hi() < 0.0
+}
+
 /// The condition F ≤ 0 ∧ V ≥ 0 provably holds at every point of the box `x`.
 pub fn holds<const N: usize, I: Enclosure>(tape: &Tape<I, N>, x: &[I; N]) -> bool {
     let o = tape.eval(x);

@@ -503,7 +503,14 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             }
         };
         let t1 = out.piece.t1();
-        let verdict = event::scan_piece(tape, &mut ev_ws, &out.piece, opts.event_forms);
+        // the step's a-priori box holds the flow on the whole piece (on a piece cut before a
+        // kink too: the continued flow equals the true one there): where F > 0 or V < 0 on it,
+        // the piece is cleared without evaluating the piece itself (most of the contact)
+        let verdict = if event::excluded(tape, &out.apriori) {
+            event::Verdict::Cleared
+        } else {
+            event::scan_piece(tape, &mut ev_ws, &out.piece, opts.event_forms)
+        };
         flow.pieces.push(out.piece);
         match (verdict, pending) {
             (event::Verdict::Found(ev), None) => return Ok((flow, ev)),
