@@ -355,32 +355,68 @@ pub fn pow(x: Interval, q: Interval) -> Option<Interval> {
         return Some(Interval::try_from((0.0, hi)).unwrap());
     }
     // q·ln x by the fast product, bit for bit inari's (no rounding-mode switches)
-    Some(exp(q.mul_constant(&ln_memo(x))))
+    Some(pow_memo(x, q))
 }
 
-/// [`ln`] with the last few results remembered per thread (keyed by the interval's ends): the
-/// powers of one operand with several exponents — |Y|^(p−1)Y and |Y|^p, |Z|^(n−1)Z and |Z|^n —
-/// take the same logarithm one after the other in each jet, 7 % of a Maxwell CoR's time. The
-/// same enclosure as `ln(x)`, bit for bit (a memo of a function of the two doubles).
-fn ln_memo(x: Interval) -> Interval {
-    use std::cell::Cell;
-    const SLOTS: usize = 4;
-    /// (the ends' bits, ln) per slot, and the slot written next
-    type Memo = ([(u64, u64, Interval); SLOTS], usize);
-    thread_local! {
-        static MEMO: Cell<Memo> =
-            const { Cell::new(([(u64::MAX, u64::MAX, Interval::EMPTY); SLOTS], 0)) };
-    }
-    let key = (x.inf().to_bits(), x.sup().to_bits());
-    MEMO.with(|m| {
-        let (mut slots, next) = m.get();
-        if let Some(&(_, _, l)) = slots.iter().find(|e| (e.0, e.1) == key) {
-            return l;
+/// The last [`MEMO_SLOTS`] results of a function of intervals, per thread, keyed by the
+/// operands' ends (a function of the doubles: what it returns for a key is that function's
+/// value bit for bit).
+struct Memo {
+    keys: [[u64; 4]; MEMO_SLOTS],
+    values: [Interval; MEMO_SLOTS],
+    next: usize,
+}
+
+/// Enough for the operands of one Taylor step's jets: the powers over X, over the a-priori
+/// box and at the midpoint, then the duals' values over X again (≈ 3 operands each).
+const MEMO_SLOTS: usize = 16;
+
+impl Memo {
+    const fn new() -> Self {
+        Self {
+            keys: [[u64::MAX; 4]; MEMO_SLOTS],
+            values: [Interval::EMPTY; MEMO_SLOTS],
+            next: 0,
         }
-        let l = ln(x);
-        slots[next] = (key.0, key.1, l);
-        m.set((slots, (next + 1) % SLOTS));
-        l
+    }
+
+    fn get_or(&mut self, key: [u64; 4], f: impl FnOnce() -> Interval) -> Interval {
+        if let Some(i) = self.keys.iter().position(|k| *k == key) {
+            return self.values[i];
+        }
+        let v = f();
+        self.keys[self.next] = key;
+        self.values[self.next] = v;
+        self.next = (self.next + 1) % MEMO_SLOTS;
+        v
+    }
+}
+
+fn bits(x: Interval) -> [u64; 2] {
+    [x.inf().to_bits(), x.sup().to_bits()]
+}
+
+/// [`ln`] with the last results remembered per thread ([`Memo`]): the powers of one operand
+/// with several exponents — |Y|^(p−1)Y and |Y|^p, |Z|^(n−1)Z and |Z|^n — take the same
+/// logarithm one after the other in each jet (exp and ln 14 % of a Maxwell CoR's time).
+fn ln_memo(x: Interval) -> Interval {
+    thread_local! {
+        static MEMO: std::cell::RefCell<Memo> = const { std::cell::RefCell::new(Memo::new()) };
+    }
+    let [a, b] = bits(x);
+    MEMO.with(|m| m.borrow_mut().get_or([a, b, 0, 0], || ln(x)))
+}
+
+/// [`pow`]'s general case exp(q·ln x) remembered per thread ([`Memo`]): the jet on duals over
+/// X takes the same powers of X as the jet over X just before it.
+fn pow_memo(x: Interval, q: Interval) -> Interval {
+    thread_local! {
+        static MEMO: std::cell::RefCell<Memo> = const { std::cell::RefCell::new(Memo::new()) };
+    }
+    let ([a, b], [c, d]) = (bits(x), bits(q));
+    MEMO.with(|m| {
+        m.borrow_mut()
+            .get_or([a, b, c, d], || exp(q.mul_constant(&ln_memo(x))))
     })
 }
 
@@ -528,13 +564,13 @@ mod tests {
         assert!(pow(pt(2.0), Interval::try_from((-1.0, 1.0)).unwrap()).is_none());
     }
 
-    /// The remembered logarithms are `ln`'s, bit for bit, over a sequence that repeats
-    /// operands within and beyond the memo's slots (hits, evictions, thin and wide intervals,
-    /// the same lower end with other upper ends).
+    /// The remembered logarithms and powers are `ln`'s and exp(q·ln x)'s, bit for bit, over a
+    /// sequence that repeats operands within and beyond the memo's slots (hits, evictions, thin
+    /// and wide intervals, the same lower end with other upper ends, several exponents).
     #[test]
     fn remembered_logarithms_are_the_logarithms() {
         let mut next = crate::arith::interval::xorshift(0x6a09_e667_f3bc_c908_u64);
-        let pool: Vec<Interval> = (0..9)
+        let pool: Vec<Interval> = (0..30)
             .map(|i| {
                 let a = 0.1 + (next() >> 11) as f64 / (1u64 << 53) as f64 * 3.0;
                 let w = [0.0, 1e-12, 0.5][i % 3];
@@ -548,6 +584,12 @@ mod tests {
         for _ in 0..2000 {
             let x = pool[(next() % pool.len() as u64) as usize];
             let (a, b) = (ln_memo(x), ln(x));
+            let q = pool[(next() % 3) as usize];
+            let (c, d) = (pow_memo(x, q), exp(q.mul_constant(&ln(x))));
+            assert!(
+                c.inf().to_bits() == d.inf().to_bits() && c.sup().to_bits() == d.sup().to_bits(),
+                "{x:?}^{q:?}: {c:?} vs {d:?}"
+            );
             assert!(
                 a.inf().to_bits() == b.inf().to_bits() && a.sup().to_bits() == b.sup().to_bits(),
                 "{x:?}: {a:?} vs {b:?}"
