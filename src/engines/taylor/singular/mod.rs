@@ -107,6 +107,15 @@ pub struct SingularOptions {
 /// M = 10: 1.143. At M = 6 the state's width after the step is 3.3e-16 at δ = 2e-3, 1.0e-15
 /// at 5e-3, 4.4e-14 at 1e-2 (the remainder ∝ δ^M); the start step costs ≈ 1 ms at M = 6
 /// (7 evaluations of the field on generalized polynomials), ≈ 12 Taylor pieces.
+///
+/// Measured again once the steps got cheaper (2026-11-26: the binomial series' partial sums
+/// cut at M − k·α_min, negative powers without MPFR, the exit parameter placed directly): on
+/// SHC DSS v0 = 1 the start step takes 0.32–0.41 ms and the crossing 0.82–0.88 ms (were 0.60
+/// and 1.26 ms). With them, δ = 2e-2, M = 8 for the start still gains nothing (per-case time
+/// ratio 1.001 over 3 alternating runs, 4–5 pieces fewer, e 3–10 % narrower on most cases
+/// but refused on SHC DSA v0 = 5 and 1.34× wider on Maxwell DSS v0 = 0.1), nor do larger
+/// trigger distances for the crossings (near 4e-3, 8e-3 with M = 6 or 7: 5–20 % slower; at
+/// M = 6 the remainder reaches 8e-15 and the step is refused once).
 impl Default for SingularOptions {
     fn default() -> Self {
         Self {
