@@ -455,6 +455,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
                             need[n] = true;
                         }
                     }
+                    // a twin power may be computed from its pair's value (`Real::twin_pow`)
+                    Op::Twin(a, _, j, _) => {
+                        need[a] = true;
+                        need[j] = true;
+                    }
                     ref op => {
                         for a in operands(op) {
                             need[a] = true;
