@@ -150,6 +150,10 @@ impl<I: Enclosure> Basis<I> {
         use std::any::Any;
         let as_f64 =
             |g: &I| -> Option<Interval> { (g as &dyn Any).downcast_ref::<Interval>().copied() };
+        // (by the type itself: an empty list of generators says nothing about it)
+        if std::any::TypeId::of::<I>() != std::any::TypeId::of::<Interval>() {
+            return Self::new(gens, max_exp);
+        }
         let Some(key) = gens
             .iter()
             .map(|g| as_f64(g).map(|x| (x.inf().to_bits(), x.sup().to_bits())))
@@ -695,13 +699,11 @@ impl<I: Enclosure> Gts<I> {
             } else {
                 f64::INFINITY
             };
-            sum = if sum.ctx.is_none() && sum.is_const() {
-                eps.scale_by(&sum.c0())
-            } else {
-                let sb = sum.bounds(&ctx);
-                sum.product_bounded(&eps, &ctx, &sb, &eps_bounds, cut)
-            }
-            .shift_by(binoms[k].clone());
+            // (`sum` always has the context: constant_in gives it one)
+            let sb = sum.bounds(&ctx);
+            sum = sum
+                .product_bounded(&eps, &ctx, &sb, &eps_bounds, cut)
+                .shift_by(binoms[k].clone());
         }
         // Lagrange: binom(q, K)·(1 + θε)^(q−K)·ε^K, θ ∈ [0, 1]
         let k = kmax as i64;
@@ -1405,6 +1407,17 @@ mod tests {
             Basis::cached(&gm, 6.0).unwrap(),
         );
         assert!(!Arc::ptr_eq(&m1, &m2) && m1.keys == m2.keys);
+        // no generators (the review's case: it returned None for MPFR intervals)
+        let none: [Mpi<128>; 0] = [];
+        assert_eq!(
+            Basis::cached(&none, 6.0).unwrap().keys,
+            Basis::new(&none, 6.0).unwrap().keys
+        );
+        let none_f: [Interval; 0] = [];
+        assert_eq!(
+            Basis::cached(&none_f, 6.0).unwrap().keys,
+            Basis::new(&none_f, 6.0).unwrap().keys
+        );
     }
 
     #[test]
