@@ -255,6 +255,11 @@ fn picard<const N: usize, I: Enclosure>(
     if !dt.is_bounded() {
         return None;
     }
+    // u₀'s powers once for the N constants (Gts::eval would make them for each)
+    let pw = match start {
+        Start::At(_, u0) => ctx.powers(u0, st.basis.len().saturating_sub(1)),
+        Start::Zero(_) => Vec::new(),
+    };
     let mut out = Vec::with_capacity(N + 1);
     for j in 0..=N {
         if j == w {
@@ -268,7 +273,7 @@ fn picard<const N: usize, I: Enclosure>(
         };
         let i = g.integral();
         let c = match start {
-            Start::At(y0, u0) => y0[j].clone() - i.eval(u0),
+            Start::At(y0, _) => y0[j].clone() - i.eval_with(&pw),
             Start::Zero(yc) => yc[j].clone(),
         };
         let yj = Gts::constant_in(ctx, c) + i;

@@ -526,6 +526,12 @@ impl<I: Enclosure> Gts<I> {
             (Some(ctx), Some((last, _))) => ctx.powers(u, *last as usize),
             _ => Vec::new(),
         };
+        self.eval_with(&p)
+    }
+
+    /// [`Gts::eval`] from the powers u^α of the keys ([`Ctx::powers`] at u, up to this value's
+    /// last key at least): for several values at one u (the same enclosure, bit for bit).
+    pub(crate) fn eval_with(&self, p: &[I]) -> I {
         let mut r = I::zero().to_jet();
         for (i, c) in self.terms.iter().rev() {
             r = r + match &self.ctx {
@@ -1367,6 +1373,13 @@ mod tests {
                         };
                         let exact = yv.pow(&qx);
                         let e = pw.eval(&iv(s, s));
+                        // from the powers of every key at once: the same enclosure, bit for bit
+                        let all = ctx.powers(&iv(s, s), basis.len() - 1);
+                        let e2 = pw.eval_with(&all);
+                        assert!(
+                            e.inf().to_bits() == e2.inf().to_bits()
+                                && e.sup().to_bits() == e2.sup().to_bits()
+                        );
                         assert!(
                             q(e.inf()) <= exact.to_rational().unwrap()
                                 && exact.to_rational().unwrap() <= q(e.sup()),
