@@ -559,6 +559,10 @@ mod tests {
             );
         }
         assert!(pow(pt(-1.0), pt(2.0)).is_none());
+        // q = −1: the quotient itself (one rounding), not exp(−ln x)
+        let x = Interval::try_from((0.3, 0.7)).unwrap();
+        let (r, d) = (pow(x, pt(-1.0)).unwrap(), div_as_inari(ONE, x));
+        assert!(r.inf() == d.inf() && r.sup() == d.sup(), "{r:?} vs {d:?}");
         // a base reaching 0, an exponent across 0: not this path
         assert!(pow(Interval::try_from((0.0, 1.0)).unwrap(), pt(-1.0)).is_none());
         assert!(pow(pt(2.0), Interval::try_from((-1.0, 1.0)).unwrap()).is_none());

@@ -301,8 +301,8 @@ pub fn excluded<const N: usize, I: Enclosure>(tape: &Tape<I, N>, x: &[I; N]) -> 
 
 /// The condition F ≤ 0 ∧ V ≥ 0 provably holds at every point of the box `x`.
 pub fn holds<const N: usize, I: Enclosure>(tape: &Tape<I, N>, x: &[I; N]) -> bool {
-    let o = tape.eval(x);
-    o[N].hi() <= 0.0 && o[N + 1].lo() >= 0.0
+    let o = tape.eval_extra(x);
+    o[0].hi() <= 0.0 && o[1].lo() >= 0.0
 }
 
 /// The event when T_s is only known to lie in [a, b] (all of [0, a) cleared, the condition

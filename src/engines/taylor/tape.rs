@@ -470,28 +470,30 @@ impl<R: Real, const N: usize> Tape<R, N> {
             }
             need
         });
-        let side = [0; N];
-        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
-        for (op, &n) in self.ops.iter().zip(needed) {
-            v.push(if n {
-                self.op_value(op, |a| &v[a], x, &side)
-            } else {
-                R::zero()
-            });
-        }
+        let v = self.node_values(x, &[0; N], Some(needed));
         self.outputs[N.min(self.outputs.len())..]
             .iter()
             .map(|&o| v[o].clone())
             .collect()
     }
 
+    /// Every node's value at `x` (kinks continued from `side`); with `needed`, only the marked
+    /// nodes (the others 0).
+    fn node_values(&self, x: &[R; N], side: &[i8; N], needed: Option<&[bool]>) -> Vec<R> {
+        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
+        for (i, op) in self.ops.iter().enumerate() {
+            v.push(if needed.is_none_or(|n| n[i]) {
+                self.op_value(op, |a| &v[a], x, side)
+            } else {
+                R::zero()
+            });
+        }
+        v
+    }
+
     /// [`Tape::eval`] of the field continued across kinks from `side` (see [`Tape::jet_on`]).
     pub fn eval_on(&self, x: &[R; N], side: &[i8; N]) -> Vec<R> {
-        let mut v: Vec<R> = Vec::with_capacity(self.ops.len());
-        for op in &self.ops {
-            let c = self.op_value(op, |a| &v[a], x, side);
-            v.push(c);
-        }
+        let v = self.node_values(x, side, None);
         self.outputs.iter().map(|&o| v[o].clone()).collect()
     }
 

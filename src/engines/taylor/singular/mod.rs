@@ -492,17 +492,27 @@ pub(crate) fn exit_parameter<I: Enclosure>(t: &Gts<I>, t1f: f64, delta: f64) -> 
     )
 }
 
+/// t(u) − t1 < 0 for every u in `u` (the exact comparison of the brackets' checks).
+fn surely_below<I: Enclosure>(t: &Gts<I>, u: &I, t1: &I) -> bool {
+    (t.eval(u) - t1.clone()).hi() < 0.0
+}
+
+/// t(u) − t1 > 0 for every u in `u`.
+fn surely_above<I: Enclosure>(t: &Gts<I>, u: &I, t1: &I) -> bool {
+    (t.eval(u) - t1.clone()).lo() > 0.0
+}
+
 /// The bracket [u_lo, u_hi] of exact doubles with t(u_lo) < t1 < t(u_hi) surely, placed from
 /// the estimate u_g where the enclosure t(u_g) = [a, b] and the slope d say t crosses t1:
 /// u_lo = u_g − (b − t1)/d − μ, u_hi = u_g + (t1 − a)/d + μ with the margin μ = ε(b − a)/d + m
 /// (ε = 10⁻³, m = 4 ulps of u_g and 2 ulps of t1 over d), each end checked like a
 /// bisection's midpoint; ε and m grow eightfold where a check fails, three times at most;
 /// then each end is moved inward by eight halvings to the estimate's other side, each
-/// checked the same way.
-/// Taken only where t(u_g) is thin (its width under 10⁻⁹ of |t1|: t's width then hardly
-/// changes across the bracket, so the bracket is as narrow as the bisections'). As narrow as the bisections' bracket to within ε of it
-/// and a few ulps (t is increasing: the true u* with t(u*) = t1 lies between the ends);
-/// nothing but the checks is relied on. `None` when no try passes.
+/// checked the same way. Taken only where t(u_g) is thin (its width under 10⁻⁹ of |t1|: t's
+/// width then hardly changes across the bracket, so the bracket is as narrow as the
+/// bisections' to within ε of it and a few ulps). t is increasing: the true u* with
+/// t(u*) = t1 lies between the ends; nothing but the checks is relied on. `None` when no try
+/// passes.
 fn exit_direct<I: Enclosure>(t: &Gts<I>, t1f: f64, delta: f64, u: f64) -> Option<I> {
     let t1 = point::<I>(t1f);
     let tu = t.eval(&point::<I>(u));
@@ -526,8 +536,8 @@ fn exit_direct<I: Enclosure>(t: &Gts<I>, t1f: f64, delta: f64, u: f64) -> Option
         if !(lo > 0.0 && lo < hi) {
             return None;
         }
-        let below = |u: f64| (t.eval(&point::<I>(u)) - t1.clone()).hi() < 0.0;
-        let above = |u: f64| (t.eval(&point::<I>(u)) - t1.clone()).lo() > 0.0;
+        let below = |u: f64| surely_below(t, &point::<I>(u), &t1);
+        let above = |u: f64| surely_above(t, &point::<I>(u), &t1);
         if below(lo) && above(hi) {
             // each end moved inward by bisection to the estimate's other side (eight
             // halvings: the ends then lie within 2μ/256 of where the checks stop passing)
@@ -562,8 +572,8 @@ fn exit_parameter_from<I: Enclosure>(
     // enough halvings to reach the ends' precision from δ (200 for f64 ends)
     let iters = 200.max((-I::epsilon().log2()) as usize + 80);
     let t1 = point::<I>(t1f);
-    let below = |u: &I| (t.eval(u) - t1.clone()).hi() < 0.0;
-    let above = |u: &I| (t.eval(u) - t1.clone()).lo() > 0.0;
+    let below = |u: &I| surely_below(t, u, &t1);
+    let above = |u: &I| surely_above(t, u, &t1);
     let mid = |a: &I, b: &I| -> Option<I> {
         let m = a.hull(b).mid_point();
         (!m.same(a) && !m.same(b)).then_some(m)

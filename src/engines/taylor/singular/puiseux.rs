@@ -148,19 +148,19 @@ impl<I: Enclosure> Basis<I> {
     /// interval (for other types the ends do not determine the value: made anew).
     pub fn cached(gens: &[I], max_exp: f64) -> Option<Arc<Self>> {
         use std::any::Any;
-        let as_f64 =
-            |g: &I| -> Option<Interval> { (g as &dyn Any).downcast_ref::<Interval>().copied() };
         // (by the type itself: an empty list of generators says nothing about it)
         if std::any::TypeId::of::<I>() != std::any::TypeId::of::<Interval>() {
             return Self::new(gens, max_exp);
         }
-        let Some(key) = gens
+        // I is Interval: every generator downcasts
+        let gens: Vec<Interval> = gens
             .iter()
-            .map(|g| as_f64(g).map(|x| (x.inf().to_bits(), x.sup().to_bits())))
-            .collect::<Option<Vec<_>>>()
-        else {
-            return Self::new(gens, max_exp);
-        };
+            .filter_map(|g| (g as &dyn Any).downcast_ref::<Interval>().copied())
+            .collect();
+        let key: Vec<(u64, u64)> = gens
+            .iter()
+            .map(|x| (x.inf().to_bits(), x.sup().to_bits()))
+            .collect();
         let m = max_exp.to_bits();
         let found = basis_cache().lock().ok().and_then(|c| {
             c.iter()
@@ -170,10 +170,7 @@ impl<I: Enclosure> Basis<I> {
         let b: Arc<Basis<Interval>> = match found {
             Some(b) => b,
             None => {
-                let b = Basis::<Interval>::new(
-                    &gens.iter().filter_map(as_f64).collect::<Vec<_>>(),
-                    max_exp,
-                )?;
+                let b = Basis::<Interval>::new(&gens, max_exp)?;
                 if let Ok(mut c) = basis_cache().lock() {
                     if c.len() >= CACHED_BASES {
                         c.remove(0);
