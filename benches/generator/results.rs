@@ -427,11 +427,11 @@ where
 fn section1(ctx: &mut Ctx) -> Vec<Row1> {
     ctx.line("## 1. Interval vs float (Table 1 sets)");
     ctx.line("");
-    let order = TaylorOptions::default().order;
+    let (order, tol) = (TaylorOptions::default().order, TaylorOptions::default().tol);
     ctx.line(format!(
         "f64: `impact` with `FloatOptions::default()` (DOP853 rtol {RTOL:e}, atol {ATOL:e}, \
          max_step {MAX_STEP:e}, event location). Rigorous: `rigorous_impact` with \
-         `TaylorOptions::default()` (order {order}, tol 1e-15), v0 a point interval. Times are \
+         `TaylorOptions::default()` (order {order}, tol {tol:e}), v0 a point interval. Times are \
          medians of {} interleaved repetitions, each a batch of ≈20 ms. f64 and \"rigorous\" \
          run on one thread (the rigorous engine in a one-thread rayon pool); \"rigorous, 2 \
          threads\" is the same call with the global pool, where each Taylor step's two \
@@ -752,12 +752,12 @@ where
         }));
     }
     let med: Vec<f64> = ts.iter().map(|v| median(v)).collect();
-    let order = TaylorOptions::default().order;
+    let (order, tol) = (TaylorOptions::default().order, TaylorOptions::default().tol);
     ctx.line(format!("### {title}"));
     ctx.line("");
     match &enc {
         Some(e) => ctx.line(format!(
-            "rigorous (order {order}, tol 1e-15): T_s ∈ [{:.15}, {:.15}], e ∈ [{:.16}, {:.16}] \
+            "rigorous (order {order}, tol {tol:e}): T_s ∈ [{:.15}, {:.15}], e ∈ [{:.16}, {:.16}] \
              (width {:.1e})\n",
             e.ts.inf(),
             e.ts.sup(),

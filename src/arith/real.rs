@@ -128,6 +128,13 @@ pub trait Real:
     fn hi(&self) -> f64;
     /// A representative point (the midpoint for intervals).
     fn mid(&self) -> f64;
+    /// True when every value of `o` is a value of `self`, decided exactly. The default, from
+    /// [`Real::lo`] and [`Real::hi`], is exact where those are the ends themselves (f64, f64
+    /// intervals); a type whose ends are finer than f64 decides on its own ends
+    /// ([`crate::arith::mpfr::Mpi`]), and one that cannot tell says false.
+    fn encloses(&self, o: &Self) -> bool {
+        self.lo() <= o.lo() && o.hi() <= self.hi()
+    }
     /// True when the value is a finite number (or a bounded, non-empty interval).
     fn is_finite(&self) -> bool {
         self.lo().is_finite() && self.hi().is_finite()

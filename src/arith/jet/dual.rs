@@ -298,6 +298,10 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     fn mid(&self) -> f64 {
         self.v.mid()
     }
+    /// Not decided for duals (no caller needs it): false.
+    fn encloses(&self, _: &Self) -> bool {
+        false
+    }
     fn is_finite(&self) -> bool {
         self.v.is_finite() && self.d.iter().all(|c| c.is_finite())
     }

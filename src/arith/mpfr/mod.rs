@@ -777,6 +777,10 @@ impl<const B: u32> Real for Mpi<B> {
     fn hi(&self) -> f64 {
         self.hi.to_f64_round(UP)
     }
+    /// On the MPFR ends themselves (f64 bounds of two intervals a hair apart may coincide).
+    fn encloses(&self, o: &Self) -> bool {
+        o.subset(self)
+    }
     fn mid(&self) -> f64 {
         if self.is_empty() {
             return f64::NAN;

@@ -331,6 +331,9 @@ pub struct Ctx<I = Interval> {
     ranges: Vec<I>,
     /// [0, δ^M]: the range of every term beyond the cut-off (δ < 1).
     beyond: I,
+    /// The cut-off its operations keep terms to: M, or below it for the cheap plain
+    /// iterations of a fixed point ([`Ctx::truncated`]).
+    cut: f64,
 }
 
 impl<I: Enclosure> Ctx<I> {
@@ -356,11 +359,43 @@ impl<I: Enclosure> Ctx<I> {
             delta,
             ranges,
             beyond: Real::pow(&d, &m),
+            cut: basis.max_exp,
         }))
     }
 
     pub fn delta(&self) -> f64 {
         self.delta
+    }
+
+    /// The exponent cut-off of this context's operations.
+    pub fn cut(&self) -> f64 {
+        self.cut
+    }
+
+    /// The same basis and domain with the operations keeping terms only up to exponent `m`
+    /// (at least 1, at most M): every term above goes into the remainder by its range
+    /// c·[0, δ^α], as those above M do — as sound as the full context, and as cheap as the
+    /// smaller basis it uses. For the plain iterations of a fixed point, which fix the terms
+    /// one unit of exponent further each ([`super::validate`]): those above have no value yet.
+    pub fn truncated(self: &Arc<Self>, m: f64) -> Arc<Self> {
+        let m = m.max(1.0);
+        if m >= self.cut {
+            return self.clone();
+        }
+        Arc::new(Self {
+            basis: self.basis.clone(),
+            delta: self.delta,
+            ranges: self.ranges.clone(),
+            beyond: self.beyond.clone(),
+            cut: m,
+        })
+    }
+
+    /// Whether key `i` lies above the cut-off of the context (by its exponent's lower end,
+    /// as the basis decides what lies above M).
+    #[inline]
+    fn above_cut(&self, i: usize) -> bool {
+        self.cut < self.basis.max_exp && self.basis.exps[i].lo() > self.cut
     }
 
     /// u^α of the keys 0..=`last` for u ⊆ [0, ∞) (1 for the constant): u^(g_j) once per
@@ -570,6 +605,9 @@ impl<I: Enclosure> Gts<I> {
             let c1 = div(c, &ctx.basis.exps_plus_one[*i as usize]);
             match ctx.basis.plus_one[*i as usize] {
                 BEYOND => rem = add(&rem, &mul(&c1, &ctx.beyond)),
+                j if ctx.above_cut(j as usize) => {
+                    rem = add(&rem, &mul(&c1, &ctx.ranges[j as usize]))
+                }
                 j => terms.push((j, c1)),
             }
         }
@@ -644,6 +682,41 @@ impl<I: Enclosure> Gts<I> {
         self
     }
 
+    /// The same set in the context `ctx` of the same basis and domain (e.g. a truncated one
+    /// or the full one again, [`Ctx::truncated`]): terms above its cut-off go into the
+    /// remainder by their range. A value of another basis or domain, or without a context,
+    /// is returned as it is (its own context stays: sound either way).
+    pub fn in_ctx(&self, ctx: &Arc<Ctx<I>>) -> Self {
+        let Some(own) = &self.ctx else {
+            return self.clone();
+        };
+        if Arc::ptr_eq(own, ctx) || !Arc::ptr_eq(&own.basis, &ctx.basis) || own.delta != ctx.delta {
+            return self.clone();
+        }
+        let mut rem = self.rem.clone();
+        let mut terms = Vec::with_capacity(self.terms.len());
+        for (i, c) in &self.terms {
+            if ctx.above_cut(*i as usize) {
+                rem = add(&rem, &mul(c, &ctx.ranges[*i as usize]));
+            } else {
+                terms.push((*i, c.clone()));
+            }
+        }
+        let moved = terms.len() < self.terms.len();
+        Self {
+            ctx: Some(ctx.clone()),
+            terms,
+            rem,
+            // ±u is kept exactly (its one term has exponent 1 ≤ every cut-off)
+            var: if moved { 0 } else { self.var },
+            fac: self
+                .fac
+                .as_ref()
+                .filter(|_| !moved)
+                .map(|f| Arc::new((f.0, f.1.in_ctx(ctx)))),
+        }
+    }
+
     /// Every coefficient and the remainder are bounded.
     pub fn is_bounded(&self) -> bool {
         bounded(&self.rem) && self.terms.iter().all(|(_, c)| bounded(c))
@@ -679,7 +752,7 @@ impl<I: Enclosure> Gts<I> {
             .map(|(i, _)| ctx.basis.exps[*i as usize].lo())
             .fold(f64::INFINITY, f64::min);
         let kmax = if a_min.is_finite() && a_min > 0.0 {
-            ((ctx.basis.max_exp / a_min).floor() as usize + 1).clamp(1, 40)
+            ((ctx.cut / a_min).floor() as usize + 1).clamp(1, 40)
         } else {
             1
         };
@@ -698,7 +771,7 @@ impl<I: Enclosure> Gts<I> {
         let eps_bounds = eps.bounds(&ctx);
         for k in (0..kmax - 1).rev() {
             let cut = if a_min.is_finite() {
-                ctx.basis.max_exp - k as f64 * a_min
+                ctx.cut - k as f64 * a_min
             } else {
                 f64::INFINITY
             };
@@ -900,6 +973,13 @@ impl<I: Enclosure> Gts<I> {
                 var: 0,
                 fac: None,
             },
+            i if ctx.above_cut(i as usize) => Self {
+                rem: c * ctx.ranges[i as usize].clone(),
+                ctx: Some(ctx),
+                terms: Vec::new(),
+                var: 0,
+                fac: None,
+            },
             i => Self {
                 ctx: Some(ctx),
                 terms: vec![(i, c)],
@@ -1020,6 +1100,7 @@ impl<I: Enclosure> Gts<I> {
         b: &Bounds<I>,
         cut: f64,
     ) -> Gts<I> {
+        let cut = cut.min(ctx.cut);
         let (terms, beyond) = match &ctx.basis.prefix {
             Some(pf) => self.products_by_prefix(o, ctx, pf, &a.mags, &b.mags, cut),
             None => self.products_by_table(o, ctx, &a.mags, &b.mags, cut),
@@ -1182,6 +1263,10 @@ impl<I: Enclosure> Real for Gts<I> {
     fn mid(&self) -> f64 {
         self.range().mid()
     }
+    /// Not decided for generalized polynomials (no caller needs it): false.
+    fn encloses(&self, _: &Self) -> bool {
+        false
+    }
     fn as_integer(&self) -> Option<i64> {
         if self.is_const() && self.rem.same(&I::zero()) {
             self.c0().as_integer()
@@ -1253,8 +1338,16 @@ mod tests {
     /// powers of −u, checked against the functions at points of the domain. With a small M the
     /// remainders carry most terms (a remainder dropped or too small shows here).
     fn check(m: f64, delta: f64, tight: f64) {
+        check_cut(m, delta, tight, f64::INFINITY);
+    }
+
+    /// [`check`] in the context cut off at `cut` ([`Ctx::truncated`]): no term above the cut
+    /// in any result, and the functions still inside.
+    fn check_cut(m: f64, delta: f64, tight: f64, cut: f64) {
         let q = Interval::parse_decimal("1.31").unwrap();
-        let ctx = Ctx::new(&Basis::new(&[q], m).unwrap(), delta).unwrap();
+        let ctx = Ctx::new(&Basis::new(&[q], m).unwrap(), delta)
+            .unwrap()
+            .truncated(cut);
         let u = Gts::variable(&ctx, -1); // Z = −u
         let y = Gts::constant_in(&ctx, iv(0.7, 0.7)) + u.clone() * Gts::from_exact_f64(-0.3)
             - Real::apow(&u, &Gts::constant(q)) * Gts::from_int(2)
@@ -1265,6 +1358,15 @@ mod tests {
         let yy = y.clone() * y.clone() * y.clone();
         let i = y.integral();
         let sp = Real::spow(&u, &Gts::constant(q));
+        for g in [&y, &p, &r, &yy, &i, &sp] {
+            for (k, _) in g.terms() {
+                let alpha = k[0] as f64 + 1.31 * k[1] as f64;
+                assert!(
+                    alpha <= cut.max(1.0) + 1e-12,
+                    "M {m}, cut {cut}: a term u^{alpha}"
+                );
+            }
+        }
         for frac in [0.0, 1e-6, 0.1, 0.3, 0.6, 1.0] {
             let s = frac * delta;
             let us = iv(s, s);
@@ -1295,6 +1397,43 @@ mod tests {
                 p.eval(&us),
                 r.eval(&us)
             );
+        }
+    }
+
+    /// The cheap plain iterations of the singular steps run in contexts cut off below M: their
+    /// operations move the terms above the cut into the remainder, and a value moved into such
+    /// a context ([`Gts::in_ctx`]) and back still holds its function.
+    #[test]
+    fn truncated_contexts_contain_the_functions_too() {
+        for cut in [1.0, 2.0, 3.5] {
+            check_cut(8.0, 0.01, f64::INFINITY, cut);
+            check_cut(6.0, 0.002, f64::INFINITY, cut);
+        }
+        let q = Interval::parse_decimal("1.31").unwrap();
+        let full = Ctx::new(&Basis::new(&[q], 6.0).unwrap(), 0.05).unwrap();
+        let u = Gts::variable(&full, 1);
+        let y = Gts::constant_in(&full, iv(0.7, 0.7)) + u.clone() * Gts::from_exact_f64(0.3)
+            - Real::apow(&u, &Gts::constant(q)) * Gts::from_int(2)
+            - u.clone() * u.clone() * u.clone() * Gts::from_exact_f64(0.1);
+        let f = |s: f64| 0.7 + 0.3 * s - 2.0 * s.powf(1.31) - 0.1 * s * s * s;
+        for cut in [1.0, 2.0, 2.7] {
+            let low = y.in_ctx(&full.truncated(cut));
+            assert!(
+                low.terms().len() < y.terms().len(),
+                "cut {cut}: nothing moved"
+            );
+            let back = low.in_ctx(&full);
+            for frac in [0.0, 0.3, 1.0] {
+                let s = frac * 0.05;
+                for g in [&low, &back] {
+                    let v = g.eval(&iv(s, s));
+                    assert!(
+                        v.inf() - 4e-16 <= f(s) && f(s) <= v.sup() + 4e-16,
+                        "cut {cut} at {s}: {v:?} vs {}",
+                        f(s)
+                    );
+                }
+            }
         }
     }
 

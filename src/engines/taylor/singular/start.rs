@@ -110,8 +110,8 @@ fn picard<const N: usize, I: Enclosure>(
 ) -> Option<Vec<Gts<I>>> {
     let x: [Gts<I>; N] = std::array::from_fn(|j| match roles[j] {
         Role::Var => Gts::variable(ctx, sigma),
-        Role::Factored(s) => Gts::factored(ctx, s, y[j].clone()),
-        Role::Regular => y[j].clone(),
+        Role::Factored(s) => Gts::factored(ctx, s, y[j].in_ctx(ctx)),
+        Role::Regular => y[j].in_ctx(ctx),
     });
     let f = tape.eval(&x);
     let dt = Gts::from_int(sigma as i64) / f[w].clone();
@@ -169,8 +169,9 @@ pub fn start_point<const N: usize, I: Enclosure>(
             Gts::constant_in(&ctx, c)
         })
         .collect();
-    let y = validate(y0, w, opts, true, |y| {
-        picard(gts_tape, &ctx, w, sigma, &roles, t0, x0, y)
+    let schedule = (false, opts.start_iterations);
+    let y = validate(y0, w, opts, opts.start_max_exp, schedule, true, |y, cut| {
+        picard(gts_tape, &ctx.truncated(cut), w, sigma, &roles, t0, x0, y)
     });
     let Some(y) = y else {
         if trace_sing() {
