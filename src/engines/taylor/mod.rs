@@ -306,12 +306,15 @@ fn integrate_tape<I: Enclosure, const N: usize>(
         }
         // time for a switching component to reach 0 at its fastest (only components moving towards 0)
         let f = tape.eval(&x);
-        let mut h_surf = f64::INFINITY;
-        for &i in switching.iter().filter(|i| !tape.kinks().contains(i)) {
+        let reach = |i: usize| {
             let toward =
                 (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
-            if toward {
-                h_surf = h_surf.min(x[i].mig_f64() / f[i].mag_f64());
+            toward.then(|| x[i].mig_f64() / f[i].mag_f64())
+        };
+        let mut h_surf = f64::INFINITY;
+        for &i in switching.iter().filter(|i| !tape.kinks().contains(i)) {
+            if let Some(h) = reach(i) {
+                h_surf = h_surf.min(h);
             }
         }
         // a kink component reaching 0 within a hundredth of the shortest Taylor step at its
@@ -323,11 +326,10 @@ fn integrate_tape<I: Enclosure, const N: usize>(
         // of step only: every step is validated).
         // (point sets only: over a wide set the rate's sign says less)
         let kink_now = w <= WIDE_SET
-            && tape.kinks().iter().any(|&i| {
-                let toward =
-                    (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
-                toward && x[i].mig_f64() < 0.01 * opts.min_taylor_step * f[i].mag_f64()
-            });
+            && tape
+                .kinks()
+                .iter()
+                .any(|&i| reach(i).is_some_and(|h| h < 0.01 * opts.min_taylor_step));
         let h_max = (opts.horizon - t).min(if h_surf.is_finite() {
             0.9 * h_surf
         } else {
@@ -354,11 +356,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
         let mut near = switching
             .iter()
             .filter(|i| sing_opts.kinks || !tape.kinks().contains(i))
-            .filter_map(|&i| {
-                let toward =
-                    (x[i].lo() > 0.0 && f[i].lo() < 0.0) || (x[i].hi() < 0.0 && f[i].hi() > 0.0);
-                toward.then(|| (i, x[i].mig_f64() / f[i].mag_f64()))
-            })
+            .filter_map(|&i| reach(i).map(|h| (i, h)))
             .filter(|&(_, h)| h < sing_opts.near);
         let first = flow.pieces.is_empty();
         let singular_out = match (near.next(), near.next()) {

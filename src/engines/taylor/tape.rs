@@ -769,9 +769,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
                         let qv = &self.consts[q];
                         if k == 0 {
                             sign[i] = self.sign_of(a, at(a, 0))?;
-                            let w0 = at(a, 0).clone();
-                            let w0 = if sign[i] > 0 { w0 } else { -w0 };
-                            let u = Real::apow(&w0, qv);
+                            let u = branch_power(at(a, 0), sign[i], qv);
                             if sign[i] < 0 { -u } else { u }
                         } else {
                             let m = self.integral_of[i].expect("checked");
@@ -1039,13 +1037,12 @@ fn sign_copies(ops: &[Op], tconst: &[bool]) -> Vec<Option<(usize, [usize; 2])>> 
             continue;
         };
         out[j] = (0..j).filter(|&i| out[i].is_none()).find_map(|i| {
-            let (pi, (ui, si), (xi, absi)) = split(i)?;
+            let (_, (ui, si), (xi, absi)) = split(i)?;
             // the same series and the same x; the powers differ (else it is one product,
             // which the recording made one node already)
             if ui != uj || xi != xj || si == sj {
                 return None;
             }
-            let _ = pi;
             // P′/P = s: the sign of w, held by either power node (pj's)
             let abs = match (absi, absj) {
                 (NO_SIGN, NO_SIGN) => NO_SIGN,
@@ -1099,8 +1096,7 @@ fn pow_node<R: Real>(
         scratch.factors(i, q, k1 - 1);
     }
     let u = if k == 0 {
-        let w0 = if s > 0 { w[0].clone() } else { -w[0].clone() };
-        Real::apow(&w0, q)
+        branch_power(&w[0], s, q)
     } else if scratch.log_on[lead] {
         if i == lead {
             scratch.dw[lt + k] = log_k(w, &scratch.dw[lt..lt + k], k);
@@ -1117,6 +1113,12 @@ fn pow_node<R: Real>(
     };
     scratch.u[at + k] = u.clone();
     if signed && s < 0 { -u } else { u }
+}
+
+/// ũ₀ = (s·w₀)^q: the order-0 value of a power of w₀ in the sign region s.
+fn branch_power<R: Real>(w0: &R, s: i8, q: &R) -> R {
+    let w0 = if s > 0 { w0.clone() } else { -w0.clone() };
+    Real::apow(&w0, q)
 }
 
 /// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), whether
@@ -1315,13 +1317,8 @@ mod tests {
             let tape = Tape::<Interval, N>::record(|v| m.field(v).to_vec());
             let fast = tape.map(|c| Ulp::of(*c));
             let ftape = Tape::<f64, N>::record(|v| mf.field(v).to_vec());
-            let mut s = seed;
-            let mut next = move || {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut r = crate::arith::interval::xorshift(seed);
+            let mut next = move || (r() >> 11) as f64 / (1u64 << 53) as f64;
             let (mut equal, mut total) = (0, 0);
             for case in 0..200 {
                 let x: [f64; N] = std::array::from_fn(|_| {
@@ -1379,13 +1376,8 @@ mod tests {
 
     /// Points of every sign pattern of the state (components ±[0.05, 1.05]) by a xorshift.
     fn sign_pattern_points<const N: usize>(seed: u64, n: usize) -> Vec<[f64; N]> {
-        let mut s = seed;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut r = crate::arith::interval::xorshift(seed);
+        let mut next = move || (r() >> 11) as f64 / (1u64 << 53) as f64;
         (0..n)
             .map(|case| {
                 std::array::from_fn(|i| {
@@ -1586,12 +1578,12 @@ mod tests {
             what: &str,
         ) {
             let sums = tape.without_shortcuts(false, true);
+            let reference = reference.without_shortcuts(true, true);
             for x in points {
                 let xi = x.map(|v| Interval::try_from((v, v)).unwrap());
                 let a = tape.jet(&xi, 10, &mut Workspace::default()).unwrap();
                 let b = sums.jet(&xi, 10, &mut Workspace::default()).unwrap();
                 let r = reference
-                    .without_shortcuts(true, true)
                     .jet(&x.map(M::from_exact_f64), 10, &mut Workspace::default())
                     .unwrap();
                 for i in 0..N {

@@ -367,11 +367,6 @@ impl<I: Enclosure> Ctx<I> {
         self.delta
     }
 
-    /// The exponent cut-off of this context's operations.
-    pub fn cut(&self) -> f64 {
-        self.cut
-    }
-
     /// The same basis and domain with the operations keeping terms only up to exponent `m`
     /// (at least 1, at most M): every term above goes into the remainder by its range
     /// c·[0, δ^α], as those above M do — as sound as the full context, and as cheap as the
