@@ -258,6 +258,22 @@ impl<R: Real> Scalar<R> for Rec<R> {
     fn apow(&self, q: &R) -> Self {
         Real::apow(self, &Self::constant(q.clone()))
     }
+    /// Both powers on one recorded constant: the tape then knows that they have one exponent,
+    /// not only two equal enclosures of it ([`super::tape::Tape`]'s merged pairs need that).
+    fn spow_apow(&self, q: &R) -> (Self, Self) {
+        let (s, a) = (Real::spow(&self.val, q), Real::apow(&self.val, q));
+        match &self.tape {
+            None => (Self::constant(s), Self::constant(a)),
+            Some(t) => {
+                let c = Self::push_const(t, q);
+                let tc = Self::tconst(t, self.idx);
+                (
+                    Self::push(t, Op::Spow(self.idx, c), tc, s),
+                    Self::push(t, Op::Apow(self.idx, c), tc, a),
+                )
+            }
+        }
+    }
 }
 
 /// Σ aⱼbⱼ recorded as products and sums.

@@ -124,6 +124,11 @@ pub struct Tape<R, const N: usize> {
     /// copy (the hysteretic rate's β|V||Z|^(n−1)Z + γV|Z|^n) — see [`lin_merges`]; in a jet
     /// the pair is one term (c_j ± c_j′)·x.
     lin_merges: Vec<Vec<(usize, usize)>>,
+    /// Per node: a sign copy whose pair a fused form may merge ([`sign_copies`]' second
+    /// result): every node of both products stands for one function (no two recorded
+    /// operations of different origin were taken as one by the common subexpressions) and the
+    /// two exponents are one recorded constant (or one exact point).
+    mergeable: Vec<bool>,
     /// Per node: constant in time (only constants and parameter variables below it; see
     /// [`Tape::record_with`]). Expanded as constants: the value at order 0, zeros above.
     tconst: Vec<bool>,
@@ -203,10 +208,51 @@ impl<R: Real, const N: usize> Tape<R, N> {
         // Common subexpressions (the force output repeats the field's powers): an operation on
         // the same operands with constants of the same value is recorded once.
         let cbits = |ci: usize| (consts[ci].lo().to_bits(), consts[ci].hi().to_bits());
+        // the same constant, decided on the type's own ends (MPFR intervals whose f64 bounds
+        // coincide may differ: such operations are not one)
+        let same_const = |c: usize, d: usize| {
+            c == d || (consts[c].encloses(&consts[d]) && consts[d].encloses(&consts[c]))
+        };
         let mut ops: Vec<Op> = Vec::with_capacity(raw.len());
         let mut map = vec![0usize; raw.len()];
         let mut seen: std::collections::HashMap<Key, usize> = std::collections::HashMap::new();
+        // Origins: each recorded operation's (kind, its operands' origins, its constant — the
+        // recorded constant's index, or the exact point's bits), interned; a node that the
+        // common subexpressions made of operations of different origin stands for more than
+        // one function (sound for enclosures, not for the merged pairs).
+        let mut origin_ids: std::collections::HashMap<OriginKey, u32> =
+            std::collections::HashMap::new();
+        let mut origin = vec![0u32; raw.len()];
+        let mut first_origin: Vec<u32> = Vec::new();
+        let mut ambiguous: Vec<bool> = Vec::new();
         for (i, op) in raw.iter().enumerate() {
+            let constant = match *op {
+                Op::Scale(_, c)
+                | Op::Shift(_, c)
+                | Op::Spow(_, c)
+                | Op::Apow(_, c)
+                | Op::Const(c) => {
+                    let k = &consts[c];
+                    let thin = k.lo() == k.hi() && R::from_exact_f64(k.lo()).encloses(k);
+                    if thin {
+                        (true, k.lo().to_bits(), 0)
+                    } else {
+                        (false, c as u64, 0)
+                    }
+                }
+                Op::Var(v) => (false, u64::MAX - v as u64, 0),
+                _ => (false, u64::MAX, 1),
+            };
+            let mut args = [u32::MAX; 2];
+            if !matches!(op, Op::Var(_) | Op::Const(_)) {
+                for (slot, a) in args.iter_mut().zip(operands(op)) {
+                    *slot = origin[a];
+                }
+            }
+            let next = origin_ids.len() as u32;
+            origin[i] = *origin_ids
+                .entry((op_code(op), args, constant))
+                .or_insert(next);
             let m = |a: usize| map[a];
             let (op, key) = match *op {
                 Op::Var(v) => (Op::Var(v), Key::Op(0, v, 0, 0, 0)),
@@ -251,12 +297,45 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 && analytic_power(&consts[c], matches!(op, Op::Spow(..)))
             {
                 map[i] = entire_power(&mut ops, &mut seen, a, q as u64);
+                note_origin(
+                    &mut first_origin,
+                    &mut ambiguous,
+                    map[i],
+                    origin[i],
+                    ops.len(),
+                );
                 continue;
             }
-            map[i] = *seen.entry(key).or_insert_with(|| {
-                ops.push(op);
-                ops.len() - 1
+            let hit = seen.get(&key).copied().filter(|&j| match (op, ops[j]) {
+                (
+                    Op::Scale(_, c)
+                    | Op::Shift(_, c)
+                    | Op::Spow(_, c)
+                    | Op::Apow(_, c)
+                    | Op::Const(c),
+                    Op::Scale(_, d)
+                    | Op::Shift(_, d)
+                    | Op::Spow(_, d)
+                    | Op::Apow(_, d)
+                    | Op::Const(d),
+                ) => same_const(c, d),
+                _ => true,
             });
+            map[i] = match hit {
+                Some(j) => j,
+                None => {
+                    ops.push(op);
+                    seen.entry(key).or_insert(ops.len() - 1);
+                    ops.len() - 1
+                }
+            };
+            note_origin(
+                &mut first_origin,
+                &mut ambiguous,
+                map[i],
+                origin[i],
+                ops.len(),
+            );
         }
         let outputs: Vec<usize> = outputs.iter().map(|&o| map[o]).collect::<Vec<usize>>();
         let mut tconst: Vec<bool> = Vec::with_capacity(ops.len());
@@ -280,7 +359,10 @@ impl<R: Real, const N: usize> Tape<R, N> {
             }
             let twin = (0..i).find(|&j| match ops[j] {
                 Op::Spow(b, d) | Op::Apow(b, d) => {
-                    b == a && cbits(d) == cbits(c) && matches!(ops[j], Op::Spow(..)) != signed
+                    b == a
+                        && cbits(d) == cbits(c)
+                        && same_const(c, d)
+                        && matches!(ops[j], Op::Spow(..)) != signed
                 }
                 _ => false,
             });
@@ -329,11 +411,22 @@ impl<R: Real, const N: usize> Tape<R, N> {
             })
             .collect();
         let integral_of = integral_powers(&ops, &consts, &tconst, &outputs[..N.min(outputs.len())]);
-        let sign_copy_of = sign_copies(
+        ambiguous.resize(ops.len(), false);
+        let thin_point = |c: usize| {
+            let k = &consts[c];
+            k.lo() == k.hi() && R::from_exact_f64(k.lo()).encloses(k)
+        };
+        let (sign_copy_of, mergeable) = sign_copies(
             &ops,
             &tconst,
-            |c, d| cbits(c) == cbits(d),
+            |c, d| cbits(c) == cbits(d) && same_const(c, d),
             |c, signed| analytic_power(&consts[c], signed),
+            // one origin: no node of the pair stands for two functions, and the exponents are
+            // one recorded constant or one exact point
+            |nodes: &[usize], (c, d): (usize, usize)| {
+                nodes.iter().all(|&n| n == NO_SIGN || !ambiguous[n])
+                    && (c == d || (thin_point(c) && thin_point(d) && same_const(c, d)))
+            },
         );
         let log_lead = log_leads(&ops, &consts, &tconst, &integral_of);
         Self {
@@ -346,6 +439,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             integral_of,
             sign_copy_of,
             lin_merges: Vec::new(),
+            mergeable,
             params: (0..N).filter(|&v| tconst[v]).collect(),
             tconst,
             lins: Vec::new(),
@@ -408,12 +502,16 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 .map(|i| self.tconst[i])
                 .collect(),
             lin_merges: Vec::new(),
+            mergeable: (0..self.ops.len())
+                .filter(|&i| keep(i))
+                .map(|i| self.mergeable[i])
+                .collect(),
             params: self.params.clone(),
             lins: f.lins,
             rounding,
             extra_needed: std::sync::OnceLock::new(),
         };
-        t.lin_merges = lin_merges(&t.lins, &t.sign_copy_of);
+        t.lin_merges = lin_merges(&t.lins, &t.sign_copy_of, &t.mergeable);
         t
     }
 
@@ -429,6 +527,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             integral_of: self.integral_of.clone(),
             sign_copy_of: self.sign_copy_of.clone(),
             lin_merges: self.lin_merges.clone(),
+            mergeable: self.mergeable.clone(),
             tconst: self.tconst.clone(),
             params: self.params.clone(),
             lins: self.lins.clone(),
@@ -507,7 +606,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
         }
         if copies {
             t.sign_copy_of = vec![None; t.ops.len()];
-            t.lin_merges = lin_merges(&t.lins, &t.sign_copy_of);
+            t.lin_merges = lin_merges(&t.lins, &t.sign_copy_of, &t.mergeable);
         }
         t
     }
@@ -1101,6 +1200,14 @@ fn log_leads<R: Real>(
         .collect()
 }
 
+/// A recorded operation's origin: (kind, its operands' origins, its constant: (exact point?,
+/// the point's bits or the constant's index, 0) — see [`Tape::record_with`]).
+type OriginKey = (u8, [u32; 2], (bool, u64, u64));
+
+/// A sign copy: (the earlier product's node, [the node holding s, the |·| node or
+/// [`NO_SIGN`]]), or `None`.
+type SignCopy = Option<(usize, [usize; 2])>;
+
 /// "No node": a sign of +1 in [`Tape::sign_copy_of`].
 const NO_SIGN: usize = usize::MAX;
 
@@ -1118,12 +1225,19 @@ const NO_SIGN: usize = usize::MAX;
 ///
 /// and the second product's series is the first's, negated or not — one sum per order fewer.
 /// Returns, per node, (P·A's node, [the node holding s, the |·| node or `NO_SIGN`]).
+///
+/// The second result says per copy whether a fused form may take the pair as one term
+/// ([`lin_merges`]): `one_origin(nodes, (q, q′))` for every node of both products and their
+/// exponents. A copy holds for enclosures whatever the origins (each node's series encloses
+/// every function it stands for); a merged pair c·P + c′·P′ = (c + s·c′)·P needs P′ = s·P as
+/// functions.
 fn sign_copies(
     ops: &[Op],
     tconst: &[bool],
     same_exponent: impl Fn(usize, usize) -> bool,
     analytic: impl Fn(usize, bool) -> bool,
-) -> Vec<Option<(usize, [usize; 2])>> {
+    one_origin: impl Fn(&[usize], (usize, usize)) -> bool,
+) -> (Vec<SignCopy>, Vec<bool>) {
     // (w, q, signed?, holds the sign of w?) of a power node. Only nodes that vary in time: a
     // jet sets the sign of those at order 0, a constant's never (a parameter range may even
     // reach 0)
@@ -1152,6 +1266,7 @@ fn sign_copies(
         _ => None,
     };
     let mut out: Vec<Option<(usize, [usize; 2])>> = vec![None; ops.len()];
+    let mut mergeable = vec![false; ops.len()];
     for j in 0..ops.len() {
         let Some((pj, (wj, qj, sj, hj), (xj, absj))) = split(j) else {
             continue;
@@ -1177,10 +1292,58 @@ fn sign_copies(
                 // |x| in both: s_x² = 1
                 _ => NO_SIGN,
             };
+            let nodes = [i, j, pi, pj, wi, xi, absi, absj];
+            mergeable[j] = one_origin(&nodes, (qi, qj));
             Some((i, [holder, abs]))
         });
     }
-    out
+    (out, mergeable)
+}
+
+/// Notes that recorded operation of origin `origin` is node `node` (of `nops`): a node first
+/// noted with one origin and then with another stands for two functions.
+fn note_origin(
+    first: &mut Vec<u32>,
+    ambiguous: &mut Vec<bool>,
+    node: usize,
+    origin: u32,
+    nops: usize,
+) {
+    first.resize(nops, u32::MAX);
+    ambiguous.resize(nops, false);
+    if first[node] == u32::MAX {
+        first[node] = origin;
+    } else if first[node] != origin {
+        ambiguous[node] = true;
+    }
+}
+
+/// A number per kind of operation (for the origins of [`Tape::record_with`]).
+fn op_code(op: &Op) -> u8 {
+    match op {
+        Op::Var(_) => 0,
+        Op::Add(..) => 1,
+        Op::Sub(..) => 2,
+        Op::Mul(..) => 3,
+        Op::Div(..) => 4,
+        Op::Neg(_) => 5,
+        Op::Scale(..) => 6,
+        Op::Shift(..) => 7,
+        Op::Abs(_) => 8,
+        Op::Spow(..) => 9,
+        Op::Apow(..) => 10,
+        Op::Twin(..) => 11,
+        Op::Const(_) => 12,
+        Op::Sign(_) => 13,
+        Op::SpowV(..) => 14,
+        Op::ApowV(..) => 15,
+        Op::Pow(..) => 16,
+        Op::Ln(_) => 17,
+        Op::Sqrt(_) => 18,
+        Op::LnAbs(_) => 19,
+        Op::PowLn(..) => 20,
+        Op::Lin(_) => 21,
+    }
 }
 
 /// Per fused form: the pairs (j, j′) of its terms whose leaves are a product and a sign copy
@@ -1188,6 +1351,7 @@ fn sign_copies(
 fn lin_merges(
     lins: &[Lin],
     sign_copy_of: &[Option<(usize, [usize; 2])>],
+    mergeable: &[bool],
 ) -> Vec<Vec<(usize, usize)>> {
     lins.iter()
         .map(|lin| {
@@ -1196,6 +1360,9 @@ fn lin_merges(
                 let Some((base, _)) = sign_copy_of.get(m).copied().flatten() else {
                     continue;
                 };
+                if !mergeable.get(m).copied().unwrap_or(false) {
+                    continue;
+                }
                 let used = |j: usize| pairs.iter().any(|&(x, y)| x == j || y == j);
                 if let Some(a) = (0..lin.terms.len())
                     .find(|&a| a != b && lin.terms[a].1 == base && !used(a) && !used(b))
@@ -1695,6 +1862,115 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A pair is merged only where its two products are one function up to sign — not where
+    /// the common subexpressions made one node of operations that only have equal enclosures
+    /// (found by an adversarial review): (A) exponents n, p ∈ [1.1, 1.3] recorded apart (the
+    /// true n = 1.1, p = 1.3), (B) x = κ₁v and κ₂v with κ₁, κ₂ ∈ [0.9, 1.1] (true 0.9 and
+    /// 1.1). There the merged form would be 10–20 times too narrow (order 1: [0.0041, 0.0047]
+    /// against the true 0.0904); now nothing merges and every jet contains the 256-bit jet of
+    /// the truth. One range recorded by `spow_apow` (one constant: one exponent) merges, and
+    /// contains the truth for q at either end of the range. (C) At 256 bits, exponents 1.31 and
+    /// 1.31 + 2⁻⁶⁰ (equal f64 bounds) are two nodes, not one power and its Twin as before,
+    /// whose order-1 coefficient missed the exact value.
+    #[test]
+    fn merged_pairs_need_one_origin() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
+        let (b, g) = (
+            Interval::parse_decimal("1.43").unwrap(),
+            Interval::parse_decimal("-1.42").unwrap(),
+        );
+        let (bm, gm) = (
+            M::parse_decimal("1.43").unwrap(),
+            M::parse_decimal("-1.42").unwrap(),
+        );
+        // β·|z|^(n−1)z·|x₁| + γ·|z|^p·x₂ with x₁ = κ₁v, x₂ = κ₂v (κ = None: v itself), the
+        // powers recorded apart or (`pair`) by one spow_apow of n
+        fn field<R: Real>(
+            v: &[Rec<R>; 2],
+            (n, p): (&R, &R),
+            k: Option<(&R, &R)>,
+            (b, g): (&R, &R),
+            pair: bool,
+        ) -> Vec<Rec<R>> {
+            let (x1, x2) = match k {
+                Some((k1, k2)) => (v[1].scale(k1), v[1].scale(k2)),
+                None => (v[1].clone(), v[1].clone()),
+            };
+            let (s, a) = if pair {
+                Scalar::<R>::spow_apow(&v[0], n)
+            } else {
+                (Scalar::<R>::spow(&v[0], n), Scalar::<R>::apow(&v[0], p))
+            };
+            let rate = (s * Real::abs(&x1)).scale(b) + (a * x2).scale(g);
+            vec![rate, -v[0].clone()]
+        }
+        let check = |tape: &Tape<Interval, 2>, truth: &Tape<M, 2>, merges: usize, what: &str| {
+            let truth = truth.without_shortcuts(true, true);
+            for rounding in [Rounding::Each, Rounding::Once] {
+                let t = tape.fused(rounding);
+                assert_eq!(t.merges(), merges, "{what}");
+                for x in sign_pattern_points::<2>(31, 8) {
+                    let a = t
+                        .jet(&x.map(|c| iv(c, c)), 6, &mut Workspace::default())
+                        .unwrap();
+                    let r = truth
+                        .jet(&x.map(M::from_exact_f64), 6, &mut Workspace::default())
+                        .unwrap();
+                    for i in 0..2 {
+                        for k in 0..=6 {
+                            assert!(
+                                r[i][k].subset(&M::from_interval(a[i][k])),
+                                "{what}, {rounding:?}: x = {x:?}, {i}, order {k}"
+                            );
+                        }
+                    }
+                }
+            }
+        };
+        let (r1, r2) = (iv(1.1, 1.3), iv(1.1, 1.3));
+        let (lo, hi) = (
+            M::parse_decimal("1.1").unwrap(),
+            M::parse_decimal("1.3").unwrap(),
+        );
+        // (A)
+        let tape = Tape::<Interval, 2>::record(|v| field(v, (&r1, &r2), None, (&b, &g), false));
+        let truth = Tape::<M, 2>::record(|v| field(v, (&lo, &hi), None, (&bm, &gm), false));
+        check(&tape, &truth, 0, "exponents apart");
+        // one constant: merged, and the truth for either end of the range inside
+        let tape = Tape::<Interval, 2>::record(|v| field(v, (&r1, &r1), None, (&b, &g), true));
+        for q in [&lo, &hi] {
+            let truth = Tape::<M, 2>::record(|v| field(v, (q, q), None, (&bm, &gm), true));
+            check(&tape, &truth, 1, "one exponent");
+        }
+        // (B)
+        let q = Interval::parse_decimal("1.31").unwrap();
+        let qm = M::parse_decimal("1.31").unwrap();
+        let (k1, k2) = (iv(0.9, 1.1), iv(0.9, 1.1));
+        let (k1m, k2m) = (
+            M::parse_decimal("0.9").unwrap(),
+            M::parse_decimal("1.1").unwrap(),
+        );
+        let tape =
+            Tape::<Interval, 2>::record(|v| field(v, (&q, &q), Some((&k1, &k2)), (&b, &g), true));
+        let truth =
+            Tape::<M, 2>::record(|v| field(v, (&qm, &qm), Some((&k1m, &k2m)), (&bm, &gm), true));
+        check(&tape, &truth, 0, "κ₁, κ₂ apart");
+        // (C) at 256 bits
+        let q2 = qm.clone() + M::from_exact_f64(2f64.powi(-60));
+        assert_eq!((q2.lo(), q2.hi()), (qm.lo(), qm.hi()));
+        let tape = Tape::<M, 2>::record(|v| field(v, (&qm, &q2), None, (&bm, &gm), false));
+        assert_eq!(tape.shortcuts(), (0, 0), "1.31 and 1.31 + 2⁻⁶⁰ at 256 bits");
+        assert!(!tape.ops().iter().any(|op| matches!(op, Op::Twin(..))));
+        let z = [M::from_exact_f64(0.5), M::from_exact_f64(1.0)];
+        let exact = Real::spow(&z[0], &qm) * bm.clone() + Real::apow(&z[0], &q2) * gm.clone();
+        for t in [tape.clone(), tape.fused(Rounding::Each)] {
+            let a = t.jet(&z, 2, &mut Workspace::default()).unwrap();
+            assert!(exact.subset(&a[0][1]), "order 1 at 256 bits");
         }
     }
 
