@@ -40,6 +40,7 @@ pub use super::rec::Rec;
 use super::rec::Recorder;
 use crate::arith::jet::series::{div_k, exp_log_k, log_k, mul_k, pow_factors, pow_k};
 use crate::arith::{Dot, Real};
+use std::borrow::{Borrow, Cow};
 use std::sync::{Arc, Mutex};
 
 /// One recorded operation; operands are indices of earlier nodes, constants index `consts`.
@@ -213,6 +214,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
         let same_const = |c: usize, d: usize| {
             c == d || (consts[c].encloses(&consts[d]) && consts[d].encloses(&consts[c]))
         };
+        // one exact point, decided on the type's own ends
+        let thin_point = |c: usize| {
+            let k = &consts[c];
+            k.lo() == k.hi() && R::from_exact_f64(k.lo()).encloses(k)
+        };
         let mut ops: Vec<Op> = Vec::with_capacity(raw.len());
         let mut map = vec![0usize; raw.len()];
         let mut seen: std::collections::HashMap<Key, usize> = std::collections::HashMap::new();
@@ -226,22 +232,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
         let mut first_origin: Vec<u32> = Vec::new();
         let mut ambiguous: Vec<bool> = Vec::new();
         for (i, op) in raw.iter().enumerate() {
-            let constant = match *op {
-                Op::Scale(_, c)
-                | Op::Shift(_, c)
-                | Op::Spow(_, c)
-                | Op::Apow(_, c)
-                | Op::Const(c) => {
-                    let k = &consts[c];
-                    let thin = k.lo() == k.hi() && R::from_exact_f64(k.lo()).encloses(k);
-                    if thin {
-                        (true, k.lo().to_bits(), 0)
-                    } else {
-                        (false, c as u64, 0)
-                    }
-                }
-                Op::Var(v) => (false, u64::MAX - v as u64, 0),
-                _ => (false, u64::MAX, 1),
+            let constant = match (op_const(op), *op) {
+                (Some(c), _) if thin_point(c) => (true, consts[c].lo().to_bits(), 0),
+                (Some(c), _) => (false, c as u64, 0),
+                (None, Op::Var(v)) => (false, u64::MAX - v as u64, 0),
+                (None, _) => (false, u64::MAX, 1),
             };
             let mut args = [u32::MAX; 2];
             if !matches!(op, Op::Var(_) | Op::Const(_)) {
@@ -306,21 +301,13 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 );
                 continue;
             }
-            let hit = seen.get(&key).copied().filter(|&j| match (op, ops[j]) {
-                (
-                    Op::Scale(_, c)
-                    | Op::Shift(_, c)
-                    | Op::Spow(_, c)
-                    | Op::Apow(_, c)
-                    | Op::Const(c),
-                    Op::Scale(_, d)
-                    | Op::Shift(_, d)
-                    | Op::Spow(_, d)
-                    | Op::Apow(_, d)
-                    | Op::Const(d),
-                ) => same_const(c, d),
-                _ => true,
-            });
+            let hit =
+                seen.get(&key)
+                    .copied()
+                    .filter(|&j| match (op_const(&op), op_const(&ops[j])) {
+                        (Some(c), Some(d)) => same_const(c, d),
+                        _ => true,
+                    });
             map[i] = match hit {
                 Some(j) => j,
                 None => {
@@ -412,10 +399,6 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .collect();
         let integral_of = integral_powers(&ops, &consts, &tconst, &outputs[..N.min(outputs.len())]);
         ambiguous.resize(ops.len(), false);
-        let thin_point = |c: usize| {
-            let k = &consts[c];
-            k.lo() == k.hi() && R::from_exact_f64(k.lo()).encloses(k)
-        };
         let (sign_copy_of, mergeable) = sign_copies(
             &ops,
             &tconst,
@@ -743,11 +726,32 @@ impl<R: Real, const N: usize> Tape<R, N> {
     where
         R: 'a,
     {
+        let terms = self.lins[l]
+            .terms
+            .iter()
+            .map(|&(c, n)| (&self.consts[c], n));
+        self.form_sum(l, terms, v, shift)
+    }
+
+    /// c₀ + Σ cⱼ·v(nⱼ) over the (constant, leaf) `terms` of form `l` (`shift`: with its c₀),
+    /// rounded as the tape says ([`Rounding`]): each product and sum in turn, or one sum of
+    /// products.
+    #[inline]
+    fn form_sum<'a, C: Borrow<R>>(
+        &self,
+        l: usize,
+        terms: impl Iterator<Item = (C, usize)>,
+        v: impl Fn(usize) -> &'a R,
+        shift: bool,
+    ) -> R
+    where
+        R: 'a,
+    {
         let lin = &self.lins[l];
         if self.rounding == Rounding::Each {
             let mut acc: Option<R> = None;
-            for &(c, n) in &lin.terms {
-                let p = v(n).mul_constant(&self.consts[c]);
+            for (c, n) in terms {
+                let p = v(n).mul_constant(c.borrow());
                 acc = Some(match acc {
                     Some(a) => a + p,
                     None => p,
@@ -760,8 +764,8 @@ impl<R: Real, const N: usize> Tape<R, N> {
             };
         }
         let mut d = <R::Dot as Dot<R>>::new();
-        for &(c, n) in &lin.terms {
-            d.add_scaled(&self.consts[c], v(n));
+        for (c, n) in terms {
+            d.add_scaled(c.borrow(), v(n));
         }
         if shift && let Some(c) = lin.shift {
             d.add_scaled(&self.consts[c], &R::one());
@@ -800,41 +804,17 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 Some(&(_, b)) => {
                     let (cb, m) = lin.terms[b];
                     let cb = self.consts[cb].clone();
-                    (
-                        if sign[m] < 0 {
-                            c.clone() - cb
-                        } else {
-                            c.clone() + cb
-                        },
-                        n,
-                    )
+                    let merged = if sign[m] < 0 {
+                        c.clone() - cb
+                    } else {
+                        c.clone() + cb
+                    };
+                    (Cow::Owned(merged), n)
                 }
-                None => (c.clone(), n),
+                None => (Cow::Borrowed(c), n),
             })
         });
-        if self.rounding == Rounding::Each {
-            let mut acc: Option<R> = None;
-            for (c, n) in terms {
-                let p = v(n).mul_constant(&c);
-                acc = Some(match acc {
-                    Some(a) => a + p,
-                    None => p,
-                });
-            }
-            let acc = acc.unwrap_or_else(R::zero);
-            return match lin.shift {
-                Some(c) if shift => acc + self.consts[c].clone(),
-                _ => acc,
-            };
-        }
-        let mut d = <R::Dot as Dot<R>>::new();
-        for (c, n) in terms {
-            d.add_scaled(&c, v(n));
-        }
-        if shift && let Some(c) = lin.shift {
-            d.add_scaled(&self.consts[c], &R::one());
-        }
-        d.sum()
+        self.form_sum(l, terms, v, shift)
     }
 
     /// The Taylor coefficients x_0..x_K of the solution of x′ = f(x), x(0) = x0 (a point or a
@@ -1315,6 +1295,16 @@ fn note_origin(
         first[node] = origin;
     } else if first[node] != origin {
         ambiguous[node] = true;
+    }
+}
+
+/// The constant (index into `consts`) a recorded operation takes, if any.
+fn op_const(op: &Op) -> Option<usize> {
+    match *op {
+        Op::Scale(_, c) | Op::Shift(_, c) | Op::Spow(_, c) | Op::Apow(_, c) | Op::Const(c) => {
+            Some(c)
+        }
+        _ => None,
     }
 }
 
