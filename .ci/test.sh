@@ -14,5 +14,7 @@ cargo run --release --quiet $FLAGS --bin proof-lyapunov
 cargo run --release --quiet $FLAGS --bin proof-equilibria
 # shellcheck disable=SC2086
 cargo run --release --quiet $FLAGS --bin proof-certificate -- check
+# the mutation guards still name code that exists (each guard's text once; no build)
+python3 proofs/mutants/guards.py --check
 # the Python package (issue #14): a venv, the package built with maturin, pytest
 bash tests/python/run.sh

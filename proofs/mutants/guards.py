@@ -2,6 +2,7 @@
 """Removes each soundness guard of the rigorous engine alone and runs the tests that must see it.
 
 Usage (from the repository root; a clean work tree): python3 proofs/mutants/guards.py [NAME...]
+       python3 proofs/mutants/guards.py --check   (each guard's text occurs exactly once; no build)
 Each mutation is applied to a copy of the tree in a temporary directory (the work tree is never
 changed), `cargo test --release` runs the named test targets there, and a line per guard says
 which tests failed. A guard whose removal leaves every test green is reported as SURVIVED and the
@@ -18,39 +19,42 @@ TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
 # (name, file, [(exact text, replacement)], what it removes)
 GUARDS = [
     ("apriori", "src/engines/taylor/step.rs",
-     [("            if subset(&ynew, &y) {", "            if true {")],
+     [("            if subset(&ynew, &y, tape.params()) {", "            if true {")],
      "the a-priori inclusion test of the Taylor step"),
     ("picard", "src/engines/taylor/step.rs",
-     [("if ynew.iter().all(|c| c.is_common_interval()) && subset(&ynew, &y) {",
-       "if ynew.iter().all(|c| c.is_common_interval()) {")],
+     [("if ynew.iter().all(|c| c.is_finite()) && subset(&ynew, &y, params) {",
+       "if ynew.iter().all(|c| c.is_finite()) {")],
      "the Picard inclusion test of the low-order step"),
-    ("q-inverse", "src/engines/taylor/lohner.rs", [("pt(r[i][j]) + ball", "pt(r[i][j])")],
+    ("q-inverse", "src/engines/taylor/lohner.rs", [("pt::<I>(r[i][j]) + ball.clone()", "pt::<I>(r[i][j])")],
      "the error term of the enclosure of Q⁻¹ (Lohner)"),
     ("q-inverse-1+e", "src/engines/taylor/lohner.rs",
-     [("e_norm / (ONE - e_norm) * r_norm", "e_norm / (ONE + e_norm) * r_norm")],
+     [("(e_norm.clone() / (I::one() - e_norm) * r_norm)",
+       "(e_norm.clone() / (I::one() + e_norm) * r_norm)")],
      "the Neumann factor 1/(1 − e) of the Q⁻¹ error term, as 1/(1 + e)"),
     ("q-inverse-e(1-e)", "src/engines/taylor/lohner.rs",
-     [("e_norm / (ONE - e_norm) * r_norm", "e_norm * (ONE - e_norm) * r_norm")],
+     [("(e_norm.clone() / (I::one() - e_norm) * r_norm)",
+       "(e_norm.clone() * (I::one() - e_norm) * r_norm)")],
      "the Neumann factor 1/(1 − e) of the Q⁻¹ error term, as (1 − e)"),
     ("newton", "src/engines/taylor/newton.rs",
-     [("        if n.interior(t) {", "        if true {")],
+     [("        if n.interior(&t) {", "        if true {")],
      "interval Newton's existence proof N(T) ⊆ int T"),
     ("ts-midpoint", "src/engines/taylor/event.rs",
      [("Some(Some(ts)) => return self.found(ts),",
        "Some(Some(ts)) => return self.found(point(ts.mid())),")],
      "the T_s enclosure (collapsed to its midpoint)"),
     ("event-which-zero", "src/engines/taylor/event.rs",
-     [("        let attempt = if v.inf() > 0.0 {", "        let attempt = if v.inf() < 0.0 {")],
+     [("        let attempt = if v.lo() > 0.0 {", "        let attempt = if v.lo() < 0.0 {")],
      "the separation event's condition V > 0 for a zero of F (a zero of F while V < 0 taken)"),
     ("kink-side", "src/engines/taylor/step.rs",
      [("        let sd = if side[i] > 0 { d } else { -d };", "        let sd = d;")],
      "the kink check's side (the rate of x_i instead of s·x_i)"),
     ("kink-old", "src/engines/taylor/step.rs",
-     [("        if sd.inf() > 0.0 {", "        if (side[i] as f64) * d.inf() > 0.0 {"),
-      ("        if sd.sup() >= 0.0 {", "        if (side[i] as f64) * d.sup() >= 0.0 {")],
+     # s·d.lo() and s·d.hi() of the rate d of x_i, written through sd = s·d (d is moved)
+     [("        if sd.lo() > 0.0 {", "        if (if side[i] > 0 { sd.lo() } else { sd.hi() }) > 0.0 {"),
+      ("        if sd.hi() >= 0.0 {", "        if (if side[i] > 0 { sd.hi() } else { sd.lo() }) >= 0.0 {")],
      "the kink check as it was before issue #12 (right for s = +1 only)"),
     ("span", "src/engines/taylor/step.rs",
-     [("    (t1, span(super::flow::tau(point(t1), t0).sup()))",
+     [("    (t1, span(tau::<Interval>(&point(t1), t0).sup()))",
        "    (t1, span((t1 - t0).max(h)))")],
      "the validated span's upper bound of t1 − t0"),
     ("integral-exponent", "src/engines/taylor/tape.rs",
@@ -149,7 +153,32 @@ def run(name, path, edits, what):
         shutil.rmtree(tmp, ignore_errors=True)
 
 
+def check():
+    """The guards' texts occur exactly once each in their files (no build, no test): a
+    guard whose code moved is found at once, not when its mutant is next run. Returns the
+    problems, one line each."""
+    problems = []
+    names = [g[0] for g in GUARDS]
+    for n in sorted(set(names)):
+        if names.count(n) > 1:
+            problems.append(f"{n}: the name is used {names.count(n)} times")
+    for name, path, edits, _ in GUARDS:
+        text = open(os.path.join(ROOT, path)).read()
+        for old, new in edits:
+            if text.count(old) != 1:
+                problems.append(f"{name}: the guard's text occurs {text.count(old)} times in {path}")
+            if old == new:
+                problems.append(f"{name}: the mutation changes nothing")
+    return problems
+
+
 def main():
+    if sys.argv[1:] == ["--check"]:
+        problems = check()
+        for p in problems:
+            print(p)
+        print(f"{len(GUARDS)} guards, {len(problems)} problem(s)")
+        sys.exit(1 if problems else 0)
     names = sys.argv[1:]
     results = [run(*g) for g in GUARDS if not names or g[0] in names]
     for r in results:

@@ -285,7 +285,9 @@ class RigorousResult:
     Attributes
     ----------
     status : per case "proved" or "not proved"; ``proved`` the same as booleans.
-    reason : per case None, or why it was not proved (the engine's words).
+    reason : per case None, or why it was not proved (the engine's words); for a proved case
+        a note where there is one (no separation before the horizon; with ``digits``, the
+        f64-interval engine's enclosure in place of the digits asked for).
     v0 : (n, 2) the enclosure of each impact speed (NaN for ``nd``).
     ts, e : (n, 2) the enclosures of T_s (nondimensional) and e (NaN where not proved).
     width_ts, width_e : upper bounds of the widths.
@@ -502,6 +504,7 @@ def cor_rigorous(
     fallback_bits: int = 256,
     fallback_seconds: float = 60.0,
     digits: Optional[int] = None,
+    time_limit: float = 300.0,
 ) -> RigorousResult:
     """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
     Taylor engine, one case per impact speed.
@@ -532,7 +535,15 @@ def cor_rigorous(
         ≈ 5–9 s); ``ts_text`` and ``e_text`` then carry every digit the width allows, rounded
         outward, ``ts`` and ``e`` the ends rounded outward to doubles, ``bits`` the precision
         (128, 192, 256 or 384). Single values only (no ranges, not with ``physical``); the
-        Taylor order and tolerances follow D (``order`` reports it).
+        Taylor order and tolerances follow D (``order`` reports it). Where the precise run
+        fails (not for lack of time) the case still gets the f64-interval engine's proof,
+        with ``bits`` 53 and the reason in ``reason``.
+    time_limit : the wall-clock budget of the whole call in seconds, 0 < S ≤ 86400 (``bwcl
+        cor --rigorous --time-limit S``): cases not proved by then are "not proved" with the
+        reason "the time budget of S s ran out".
+
+    A case proved to have no separation before the horizon (T_s > horizon) has status
+    "proved", ``separated`` False, NaN bounds and that statement in ``reason``.
 
     Returns
     -------
@@ -549,6 +560,7 @@ def cor_rigorous(
     ]
     if digits is not None:
         argv += [f"--digits={_num(digits, 'digits')}"]
+    argv += [f"--time-limit={_num(time_limit, 'time_limit')}"]
     tokens = None if v0 is None else _speed_tokens(v0, True)
     d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, threads=_threads(threads))
     n = len(d["proved"])

@@ -156,6 +156,7 @@ def cor_rigorous(
     fallback_bits: int = ...,
     fallback_seconds: float = ...,
     digits: Optional[int] = ...,
+    time_limit: float = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,

@@ -56,9 +56,19 @@ const HEAD: [&str; 16] = [
     "thickness",
 ];
 
-/// One piece's fields, printed outward: the v0 range inward (the claim holds on it), the
-/// centre exactly, lower bounds down, upper bounds and the thickness up.
-fn fields(p: &BandPiece) -> Vec<String> {
+/// One piece's fields, printed outward: the v0 range inward (the claim holds on it) — an end
+/// shared with the next piece exactly (the cuts are doubles with short exact decimals,
+/// [`bwcl::observables::band::short_cuts`]), so that the printed pieces cover the range without
+/// gaps; the ends of the whole range [`lo`, `hi`] inward — the centre exactly, lower bounds
+/// down, upper bounds and the thickness up.
+fn fields(p: &BandPiece, lo: f64, hi: f64) -> Vec<String> {
+    let end = |x: f64, dir: Rounding| {
+        if x == lo || x == hi {
+            outward(x, dir)
+        } else {
+            exact_decimal(x)
+        }
+    };
     let pair = |i: Interval| {
         [
             outward(i.inf(), Rounding::Down),
@@ -66,8 +76,8 @@ fn fields(p: &BandPiece) -> Vec<String> {
         ]
     };
     let mut f = vec![
-        outward(p.v0_lo, Rounding::Up),
-        outward(p.v0_hi, Rounding::Down),
+        end(p.v0_lo, Rounding::Up),
+        end(p.v0_hi, Rounding::Down),
         exact_decimal(p.v0_c),
     ];
     for i in [p.e_c, p.de, p.e, p.ts_c, p.dts, p.ts] {
@@ -77,14 +87,14 @@ fn fields(p: &BandPiece) -> Vec<String> {
     f
 }
 
-fn json(pieces: &[BandPiece], meta: &str) -> Vec<u8> {
+fn json(pieces: &[BandPiece], meta: &str, lo: f64, hi: f64) -> Vec<u8> {
     let mut s = format!("{{{meta},\"pieces\":[");
     for (k, p) in pieces.iter().enumerate() {
         if k > 0 {
             s.push(',');
         }
         s.push('{');
-        for (i, (h, v)) in HEAD.iter().zip(fields(p)).enumerate() {
+        for (i, (h, v)) in HEAD.iter().zip(fields(p, lo, hi)).enumerate() {
             if i > 0 {
                 s.push(',');
             }
@@ -133,15 +143,32 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     let opts: TaylorOptions = input::taylor_options(&a.engine)?;
     let cases = input::cases::<Interval>(&a.params)?;
     let (base, lo, hi) = band_case(kind, &cases)?;
+    let bar = super::progress::Progress::range("cor --band", a.engine.time_limit);
     let bo = BandOptions {
         thickness: a.thickness.unwrap_or(1e-6),
         // --order when given, else the band's own default
         order: a.engine.order.unwrap_or(BandOptions::default().order),
+        progress: Some(bar.callback()),
         ..BandOptions::default()
     };
     let start = std::time::Instant::now();
-    let band = prove_band(kind, &base, lo, hi, &bo, &opts)
-        .map_err(|e| CliError::Failed(format!("band not proved: {}", e.reason)))?;
+    let band = prove_band(kind, &base, lo, hi, &bo, &opts);
+    bar.finish();
+    let band = band.map_err(|e| {
+        let why = if e.out_of_time() {
+            let rest = e
+                .reason
+                .strip_prefix(bwcl::engines::taylor::DEADLINE)
+                .unwrap_or("");
+            format!(
+                "the time budget of {} s ran out (--time-limit){rest}",
+                input::time_limit(a.engine.time_limit)
+            )
+        } else {
+            e.reason
+        };
+        CliError::Failed(format!("band not proved: {why}"))
+    })?;
     let secs = start.elapsed().as_secs_f64();
     let thick = band.thickness();
     let bytes = if path.extension().is_some_and(|e| e == "json") {
@@ -153,9 +180,9 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
             band.pieces.len(),
             outward(thick, Rounding::Up)
         );
-        json(&band.pieces, &meta)
+        json(&band.pieces, &meta, lo, hi)
     } else {
-        output::csv(&HEAD, band.pieces.iter().map(fields))?
+        output::csv(&HEAD, band.pieces.iter().map(|p| fields(p, lo, hi)))?
     };
     output::emit(Some(path), &bytes)?;
     let summary = format!(
@@ -214,6 +241,7 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
         )));
     }
     let start = std::time::Instant::now();
+    let bar = super::progress::Progress::range("prove monotone", a.time_limit);
     let m = prove_decreasing(
         kind,
         &base,
@@ -221,11 +249,53 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
         hi,
         &BandOptions {
             min_width: (hi - lo) * 1e-6,
+            progress: Some(bar.callback()),
             ..BandOptions::default()
         },
-        &TaylorOptions::default(),
+        &TaylorOptions {
+            deadline: Some(input::deadline(a.time_limit)),
+            ..TaylorOptions::default()
+        },
     );
+    bar.finish();
     let secs = start.elapsed().as_secs_f64();
+    let limit = input::time_limit(a.time_limit);
+    // a piece stopped by the budget: named with the budget
+    let why_text = |why: &str| {
+        if why.starts_with(bwcl::engines::taylor::DEADLINE) {
+            format!("the time budget of {limit} s ran out (--time-limit)")
+        } else {
+            why.to_string()
+        }
+    };
+    let range_text = |a: f64, b: f64, inward: bool| {
+        if inward {
+            format!(
+                "[{}, {}]",
+                outward(a, Rounding::Up),
+                outward(b, Rounding::Down)
+            )
+        } else {
+            format!(
+                "[{}, {}]",
+                outward(a, Rounding::Down),
+                outward(b, Rounding::Up)
+            )
+        }
+    };
+    let verdict = if m.proved() {
+        "proved"
+    } else if m.refuted() {
+        "disproved"
+    } else {
+        "not proved"
+    };
+    // the least proved rise of e where it increases
+    let min_rise = m
+        .increasing
+        .iter()
+        .map(|p| p.2.inf())
+        .fold(f64::INFINITY, f64::min);
     let text = match a.format {
         ReportFormat::Json => {
             let und: Vec<String> = m
@@ -236,12 +306,26 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
                         "{{\"v0\":[{},{}],\"reason\":{}}}",
                         outward(*a, Rounding::Down),
                         outward(*b, Rounding::Up),
-                        serde_json::to_string(why).unwrap_or_default()
+                        serde_json::to_string(&why_text(why)).unwrap_or_default()
+                    )
+                })
+                .collect();
+            // the increasing pieces (the claim holds on the printed range: ends inward)
+            let inc: Vec<String> = m
+                .increasing
+                .iter()
+                .map(|(a, b, de)| {
+                    format!(
+                        "{{\"v0\":[{},{}],\"de_dv0\":[{},{}]}}",
+                        outward(*a, Rounding::Up),
+                        outward(*b, Rounding::Down),
+                        outward(de.inf(), Rounding::Down),
+                        outward(de.sup(), Rounding::Up)
                     )
                 })
                 .collect();
             format!(
-                "{{\"model\":\"{}\",\"v0\":[{},{}],\"proved_decreasing\":{},\"pieces\":{},\"max_slope\":{},\"undecided\":[{}],\"seconds\":{secs:.3}}}\n",
+                "{{\"model\":\"{}\",\"v0\":[{},{}],\"verdict\":\"{verdict}\",\"proved_decreasing\":{},\"pieces\":{},\"max_slope\":{},\"increasing\":[{}],\"undecided\":[{}],\"seconds\":{secs:.3}}}\n",
                 kind.name(),
                 outward(lo, Rounding::Up),
                 outward(hi, Rounding::Down),
@@ -252,6 +336,7 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
                 } else {
                     outward(m.max_slope(), Rounding::Up)
                 },
+                inc.join(","),
                 und.join(",")
             )
         }
@@ -264,6 +349,22 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
                     m.pieces.len(),
                     outward(m.max_slope(), Rounding::Up)
                 )
+            } else if m.refuted() {
+                let mut s = format!(
+                    "DISPROVED: e(v0) is not decreasing on [{}, {}]: it is strictly increasing (de/dv0 ≥ {} > 0) for v0 in\n",
+                    outward(lo, Rounding::Up),
+                    outward(hi, Rounding::Down),
+                    outward(min_rise, Rounding::Down)
+                );
+                for (a, b, _) in &m.increasing {
+                    s.push_str(&format!("  {}\n", range_text(*a, *b, true)));
+                }
+                s.push_str(&format!(
+                    "(decreasing proved on {} pieces, {} sub-range(s) undecided or not examined), {secs:.1} s\n",
+                    m.pieces.len(),
+                    m.undecided.len()
+                ));
+                s
             } else {
                 let mut s = format!(
                     "NOT PROVED on all of [{}, {}]: decreasing on {} pieces; undecided on:\n",
@@ -273,9 +374,9 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
                 );
                 for (a, b, why) in &m.undecided {
                     s.push_str(&format!(
-                        "  [{}, {}]: {why}\n",
-                        outward(*a, Rounding::Down),
-                        outward(*b, Rounding::Up)
+                        "  {}: {}\n",
+                        range_text(*a, *b, false),
+                        why_text(why)
                     ));
                 }
                 s

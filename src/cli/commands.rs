@@ -74,19 +74,28 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
         let cases = input::cases::<Interval>(&a.params)?;
         let start = std::time::Instant::now();
+        let bar = super::progress::Progress::cases(
+            "cor --rigorous",
+            cases.len(),
+            input::time_limit(a.engine.time_limit),
+        );
         let rows: Vec<RigorousRow> = cases
             .par_iter()
             .map(|c| {
-                rigorous_row(
+                let row = rigorous_row(
                     kind,
                     c,
                     &opts,
                     input::pieces(&a.engine),
                     a.sensitivities,
                     &fallback,
-                )
+                    a.engine.time_limit,
+                );
+                bar.inc();
+                row
             })
             .collect();
+        bar.finish();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
         (
@@ -206,7 +215,17 @@ pub(crate) fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> 
     row
 }
 
-/// Enclosures of T_s and e of one case on the rigorous engine.
+/// What a case without separation before the horizon proved.
+pub(crate) fn no_separation_text(horizon: f64) -> String {
+    format!(
+        "proved: no separation before the horizon T = {h} (T_s > {h}; e = 0 if it never separates, the paper's convention for T_s = +∞)",
+        h = num(horizon)
+    )
+}
+
+/// Enclosures of T_s and e of one case on the rigorous engine (`time_limit`: the
+/// --time-limit given, named when the run stops at `opts.deadline`).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn rigorous_row(
     kind: ModelKind,
     c: &Case<Interval>,
@@ -214,6 +233,7 @@ pub(crate) fn rigorous_row(
     pieces: usize,
     sensitivities: bool,
     fallback: &FallbackBudget,
+    time_limit: Option<f64>,
 ) -> RigorousRow {
     // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
     // set, with the solution's dependence on them carried by the engine
@@ -289,7 +309,12 @@ pub(crate) fn rigorous_row(
             row.width_e = Some(width(e));
             row.ts_seconds = c.scales.as_ref().map(|s| Some(bounds(ts * s.t_c)));
         }
-        Err(err) => row.reason = Some(err.to_string()),
+        // the condition proved to fail on [0, horizon]: T_s > horizon, a result
+        Err(err) if err.no_separation() => {
+            row.proved = true;
+            row.reason = Some(no_separation_text(opts.horizon));
+        }
+        Err(err) => row.reason = Some(input::limit_text(&err, time_limit)),
     }
     if sensitivities {
         let names = c.inputs.names();
@@ -337,9 +362,21 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     let (head, rows, remark) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let case = input::single_case::<Interval>(&a.params)?;
-        with_model!(kind, case.params, |m| rigorous_curve(
-            &m, &opts, t_end, points, what
-        ))?
+        let bar = super::progress::Progress::cases(
+            "proving the flow",
+            1,
+            input::time_limit(a.engine.time_limit),
+        );
+        let r = with_model!(kind, case.params, |m| rigorous_curve(
+            &m,
+            &opts,
+            t_end,
+            points,
+            what,
+            a.engine.time_limit
+        ));
+        bar.finish();
+        r?
     } else {
         let opts = input::float_options(&a.engine)?;
         let case = input::single_case::<f64>(&a.params)?;
@@ -438,8 +475,10 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     t_end: Option<f64>,
     points: usize,
     what: Curve,
+    time_limit: Option<f64>,
 ) -> Result<Csv, CliError> {
-    let enc = rigorous_impact(model, opts).map_err(|e| CliError::Failed(e.to_string()))?;
+    let enc = rigorous_impact(model, opts)
+        .map_err(|e| CliError::Failed(input::limit_text(&e, time_limit)))?;
     let flow_end = enc.flow.t_end();
     let end = match t_end {
         Some(t) if t > flow_end => {

@@ -4,10 +4,11 @@
 //! rigorous one (decimals enclosed as written, ranges a..b allowed).
 
 use super::CliError;
-use super::args::{EngineArgs, ParamArgs};
+use super::args::{EngineArgs, ParamArgs, TIME_LIMIT};
 use bwcl::arith::Real;
 use bwcl::engines::dop853::Options;
 use bwcl::engines::taylor::TaylorOptions;
+use bwcl::engines::taylor::{DEADLINE, RigorError};
 use bwcl::fit::data::echo;
 use bwcl::models::params::show;
 use bwcl::models::scaling::{PhysicalParams, Scales, nd_from_base, parse_speeds};
@@ -187,14 +188,15 @@ fn input_error<R: Real>(opt: &str, text: &str, pairs: &[(&str, &str)], e: ParamE
         let Ok(x) = R::parse_decimal(token) else {
             continue;
         };
+        // (the values are checked as written, exactly: a message about a value is about the
+        // token, not its enclosure)
         let prefix = format!("{name} = {}", show(&x));
-        if let Some(rest) = msg.strip_prefix(&prefix) {
-            let read_as = if x.lo() < x.hi() && !token.contains("..") {
-                format!(" (enclosed in [{}, {}])", short(x.lo()), short(x.hi()))
-            } else {
-                String::new()
-            };
-            msg = format!("{name} = {}{read_as}{}", echo(token), compact(rest));
+        let written = format!("{name} = {token}");
+        if let Some(rest) = msg
+            .strip_prefix(&written)
+            .or_else(|| msg.strip_prefix(&prefix))
+        {
+            msg = format!("{name} = {}{}", echo(token), compact(rest));
             return CliError::Input(format!("{opt}: {msg}"));
         }
     }
@@ -275,7 +277,43 @@ fn rigorous_only(e: &EngineArgs) -> Result<(), CliError> {
             )));
         }
     }
+    if let Some(s) = e.time_limit {
+        return Err(CliError::Input(format!(
+            "--time-limit {s} is an option of the rigorous engine: add --rigorous"
+        )));
+    }
     Ok(())
+}
+
+/// --time-limit, or its default.
+pub fn time_limit(given: Option<f64>) -> f64 {
+    given.unwrap_or(TIME_LIMIT)
+}
+
+/// The instant the command's time budget ends (from now).
+pub fn deadline(given: Option<f64>) -> std::time::Instant {
+    std::time::Instant::now() + std::time::Duration::from_secs_f64(time_limit(given))
+}
+
+/// A not-proved case's reason as printed: a run stopped by the command's budget names it.
+pub fn reason_text(e: &RigorError, engine: &EngineArgs) -> String {
+    limit_text(e, engine.time_limit)
+}
+
+/// [`reason_text`] with the --time-limit given (or not).
+pub fn limit_text(e: &RigorError, given: Option<f64>) -> String {
+    if e.out_of_time() {
+        let s = time_limit(given);
+        let rest = e.reason.strip_prefix(DEADLINE).unwrap_or("");
+        let at = if e.t > 0.0 || e.width > 0.0 {
+            format!(" (at T = {}, enclosure width {:e})", e.t, e.width)
+        } else {
+            String::new()
+        };
+        format!("not proved: the time budget of {s} s ran out (--time-limit){rest}{at}")
+    } else {
+        e.to_string()
+    }
 }
 
 /// DOP853 settings: the paper's, with the given overrides (their ranges checked by clap).
@@ -304,6 +342,7 @@ pub fn taylor_options(e: &EngineArgs) -> Result<TaylorOptions, CliError> {
     Ok(TaylorOptions {
         horizon: e.horizon,
         order: e.order.unwrap_or(default.order),
+        deadline: Some(deadline(e.time_limit)),
         ..default
     })
 }

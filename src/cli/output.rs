@@ -419,6 +419,8 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                                 c.push(r.bits.to_string());
                             }
                         }
+                        // proved without separation: the reason is the result
+                        _ if r.proved => c.push(r.reason.clone().unwrap_or_default()),
                         _ => {
                             let reason = r.reason.as_deref().unwrap_or("no reason given");
                             c.push(if reason.starts_with("not proved") {

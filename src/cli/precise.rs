@@ -8,16 +8,19 @@ use super::output::{csv, table};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::models::ModelKind;
 use bwcl::observables::precision::{
-    ParamText, PreciseEnclosure, bits_for_digits, outward_text, rigorous_impact_digits, width_text,
+    ParamText, PreciseEnclosure, bits_for_digits, outward_text, rigorous_impact_digits_or_f64,
+    width_text,
 };
 use bwcl::observables::sets;
 use inari::Interval;
 use rayon::prelude::*;
 
-/// One case: its v0 as written (or "-") and the proved enclosure or why not.
+/// One case: its v0 as written (or "-") and the proved enclosure or why not; a note when the
+/// digits asked for were not reached and the enclosure is the f64-interval engine's.
 struct Row {
     v0: String,
     res: Result<PreciseEnclosure, String>,
+    note: Option<String>,
 }
 
 /// The cases of --nd or --base/--v0 as texts (validated by the usual parser first, so bad input
@@ -72,13 +75,33 @@ pub fn cor(a: &CorArgs, digits: usize) -> Result<i32, CliError> {
     let kind = ModelKind::from(a.params.model);
     let cases = cases(a)?;
     let start = std::time::Instant::now();
+    let bar = super::progress::Progress::cases(
+        &format!("cor --digits {digits}"),
+        cases.len(),
+        input::time_limit(a.engine.time_limit),
+    );
     let rows: Vec<Row> = cases
         .par_iter()
-        .map(|(v0, p)| Row {
-            v0: v0.clone(),
-            res: rigorous_impact_digits(kind, p, d, &opts).map_err(|e| e.to_string()),
+        .map(|(v0, p)| match rigorous_impact_digits_or_f64(kind, p, d, &opts) {
+            Ok((enc, why)) => Row {
+                v0: v0.clone(),
+                note: why.map(|e| {
+                    format!(
+                        "{digits} digits not reached at {bits} bits ({}): the f64-interval engine's enclosure",
+                        e.reason
+                    )
+                }),
+                res: Ok(enc),
+            },
+            Err(e) => Row {
+                v0: v0.clone(),
+                res: Err(input::reason_text(&e, &a.engine)),
+                note: None,
+            },
         })
+        .inspect(|_| bar.inc())
         .collect();
+    bar.finish();
     let elapsed = start.elapsed();
     let failed = rows.iter().filter(|r| r.res.is_err()).count();
     let bytes = render(kind, &rows, bits, a.format)?;
@@ -128,9 +151,13 @@ fn json_str(s: &str) -> String {
 fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Vec<u8>, CliError> {
     match format {
         Format::Table => {
-            let head = [
+            let noted = rows.iter().any(|r| r.note.is_some());
+            let mut head = vec![
                 "model", "v0", "ts", "width_ts", "e", "width_e", "bits", "pieces",
             ];
+            if noted {
+                head.push("note");
+            }
             let body: Vec<Vec<String>> = rows
                 .iter()
                 .map(|r| {
@@ -146,6 +173,9 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                                 p.bits.to_string(),
                                 p.pieces.to_string(),
                             ]);
+                            if noted {
+                                c.push(r.note.clone().unwrap_or_default());
+                            }
                         }
                         Err(e) => c.push(e.clone()),
                     }
@@ -165,7 +195,11 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                     Ok(p) => {
                         c.push("true".into());
                         c.extend(cells(p));
-                        c.extend([p.bits.to_string(), p.pieces.to_string(), String::new()]);
+                        c.extend([
+                            p.bits.to_string(),
+                            p.pieces.to_string(),
+                            r.note.clone().unwrap_or_default(),
+                        ]);
                     }
                     Err(e) => {
                         c.push("false".into());
@@ -186,15 +220,22 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                     } else {
                         json_str(&r.v0)
                     };
+                    // the precision that proved the case (53: the f64-interval engine's proof)
+                    let b = r.res.as_ref().map_or(bits, |p| p.bits);
                     let common = format!(
-                        "\"model\": {}, \"v0\": {v0}, \"bits\": {bits}",
+                        "\"model\": {}, \"v0\": {v0}, \"bits\": {b}",
                         json_str(kind.name())
                     );
                     match &r.res {
                         Ok(p) => {
                             let [tl, th, tw, el, eh, ew] = cells(p);
+                            let note = r
+                                .note
+                                .as_ref()
+                                .map(|n| format!(", \"note\": {}", json_str(n)))
+                                .unwrap_or_default();
                             format!(
-                                "  {{{common}, \"proved\": true, \"ts\": [{tl}, {th}], \"width_ts\": {tw}, \"e\": [{el}, {eh}], \"width_e\": {ew}, \"pieces\": {}}}",
+                                "  {{{common}, \"proved\": true, \"ts\": [{tl}, {th}], \"width_ts\": {tw}, \"e\": [{el}, {eh}], \"width_e\": {ew}, \"pieces\": {}{note}}}",
                                 p.pieces
                             )
                         }

@@ -8,6 +8,8 @@
 //! hold for every value in the intervals. NaN and ±∞ are rejected everywhere.
 
 use crate::arith::Real;
+use crate::arith::mpfr::decimal_value;
+use rug::Rational;
 use std::fmt;
 
 /// Which collision model a parameter set belongs to.
@@ -62,6 +64,14 @@ pub enum Admissibility {
     Open,
     /// The appendices' closed set: B ≥ 0, Γ ∈ [−B, B], σ ≥ 0.
     Closed,
+    /// Enclosures of values already proved in 𝓟 exactly (the decimals as written,
+    /// [`check_decimals`], or values mapped from them): the outward rounding of a value next to
+    /// a strict bound may reach it (0.9999999999999999 lies strictly between the doubles
+    /// 1 − 2⁻⁵³ and 1, so its enclosure ends at 1), so only what that rounding keeps is
+    /// checked: B, σ ≥ 0, κ ∈ [0, 1], −sup B ≤ Γ ≤ sup B (rounding is monotone: Γ < B gives
+    /// sup Γ ≤ sup B), n, p ≥ 1 and the Maxwell model's p ∈ [2, ∞) ∪ {1} (bounds that are
+    /// doubles are kept by the rounding).
+    Written,
 }
 
 /// A parameter outside 𝓟, or not a finite number. The message names the condition and values.
@@ -135,11 +145,15 @@ impl<R: Real> NdParams<R> {
         Ok(s)
     }
 
-    /// Parses the six decimals "B,Γ,κ,σ,n,p" (each enclosed as written for intervals).
+    /// Parses the six decimals "B,Γ,κ,σ,n,p" (each enclosed as written for intervals; a range
+    /// a..b for intervals): the values as written are checked against 𝓟 exactly
+    /// ([`check_decimals`]), their enclosures in `R` against what outward rounding keeps
+    /// ([`Admissibility::Written`]).
     pub fn parse(kind: ModelKind, text: &str) -> Result<Self, ParamError> {
         let v = parse_list::<R>(text, 6, "B,Γ,κ,σ,n,p")?;
+        check_decimals(kind, text)?;
         let [b, g, k, s, n, p]: [R; 6] = v.try_into().unwrap();
-        Self::new(kind, b, g, k, s, n, p)
+        Self::with_admissibility(kind, Admissibility::Written, b, g, k, s, n, p)
     }
 
     /// The fields in the paper's order (B, Γ, κ, σ, n, p).
@@ -166,6 +180,9 @@ impl<R: Real> NdParams<R> {
             }
         }
         let (b, g) = (&self.b, &self.gamma);
+        if set == Admissibility::Written {
+            return self.validate_written(kind);
+        }
         let closed = set == Admissibility::Closed;
         if closed {
             if b.lo() < 0.0 {
@@ -221,6 +238,125 @@ impl<R: Real> NdParams<R> {
         }
         Ok(())
     }
+}
+
+impl<R: Real> NdParams<R> {
+    /// [`Admissibility::Written`] (the values are finite, checked by [`NdParams::validate`]).
+    fn validate_written(&self, kind: ModelKind) -> Result<(), ParamError> {
+        let (b, g) = (&self.b, &self.gamma);
+        let fail = |what: String| Err(ParamError(what));
+        if b.lo() < 0.0 {
+            return fail(format!("B = {} must be > 0", show(b)));
+        }
+        if !(g.lo() >= -b.hi() && g.hi() <= b.hi()) {
+            return fail(format!(
+                "Γ = {} must lie in (−B, B) = ({}, {})",
+                show(g),
+                -b.hi(),
+                b.hi()
+            ));
+        }
+        if self.sigma.lo() < 0.0 {
+            return fail(format!("σ = {} must be > 0", show(&self.sigma)));
+        }
+        if !(self.kappa.lo() >= 0.0 && self.kappa.hi() <= 1.0) {
+            return fail(format!("κ = {} must lie in (0, 1)", show(&self.kappa)));
+        }
+        if self.n.lo() < 1.0 {
+            return fail(format!("n = {} must be ≥ 1", show(&self.n)));
+        }
+        if self.p.lo() < 1.0 {
+            return fail(format!("p = {} must be ≥ 1", show(&self.p)));
+        }
+        if kind == ModelKind::Maxwell {
+            let is_one = self.p.lo() == 1.0 && self.p.hi() == 1.0;
+            if !(is_one || self.p.lo() >= 2.0) {
+                return fail(format!(
+                    "p = {} must lie in [2, ∞) ∪ {{1}} for the Maxwell model",
+                    show(&self.p)
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The exact values of a decimal or a range "a..b" as written: [a, b] as rationals.
+pub fn decimal_range(token: &str) -> Result<[Rational; 2], String> {
+    let t = token.trim();
+    let one = |s: &str| {
+        let s = s.trim();
+        crate::arith::real::check_plain_decimal(s)?;
+        decimal_value(s)
+    };
+    match t.split_once("..") {
+        None => {
+            let x = one(t)?;
+            Ok([x.clone(), x])
+        }
+        Some((a, b)) => {
+            let (a, b) = (one(a)?, one(b)?);
+            if a > b {
+                return Err(format!(
+                    "the range '{t}' is empty (its start exceeds its end)"
+                ));
+            }
+            Ok([a, b])
+        }
+    }
+}
+
+/// Checks the six decimals "B,Γ,κ,σ,n,p" as written (each a decimal or a range a..b) against
+/// `kind`'s 𝓟, exactly: every value of every range, compared as rationals — not their
+/// enclosures, which may touch a bound the decimal does not (κ = 0.9999999999999999 < 1 is
+/// enclosed in [1 − 2⁻⁵³, 1]). The message names the value as written.
+pub fn check_decimals(kind: ModelKind, text: &str) -> Result<(), ParamError> {
+    let tokens: Vec<&str> = text.split(',').map(str::trim).collect();
+    let names = ["B", "Γ", "κ", "σ", "n", "p"];
+    if tokens.len() != 6 {
+        return Err(ParamError(format!(
+            "expected 6 comma-separated values B,Γ,κ,σ,n,p, got {} in '{text}'",
+            tokens.len()
+        )));
+    }
+    let mut v: Vec<[Rational; 2]> = Vec::with_capacity(6);
+    for (t, name) in tokens.iter().zip(names) {
+        v.push(decimal_range(t).map_err(|e| ParamError(format!("{name}: {e}")))?);
+    }
+    let zero = Rational::new();
+    let one = Rational::from(1);
+    let two = Rational::from(2);
+    let [b, g, k, s, n, p] = [&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]];
+    let [tb, tg, tk, ts, tn, tp] = [
+        tokens[0], tokens[1], tokens[2], tokens[3], tokens[4], tokens[5],
+    ];
+    let fail = |what: String| Err(ParamError(what));
+    if b[0] <= zero {
+        return fail(format!("B = {tb} must be > 0"));
+    }
+    if !(g[0] > -b[0].clone() && g[1] < b[0]) {
+        let lo = tb.split("..").next().unwrap_or(tb).trim();
+        let lo = lo.strip_prefix('+').unwrap_or(lo);
+        return fail(format!("Γ = {tg} must lie in (−B, B) = (-{lo}, {lo})"));
+    }
+    if s[0] <= zero {
+        return fail(format!("σ = {ts} must be > 0"));
+    }
+    if !(k[0] > zero && k[1] < one) {
+        return fail(format!("κ = {tk} must lie in (0, 1)"));
+    }
+    if n[0] < one {
+        return fail(format!("n = {tn} must be ≥ 1"));
+    }
+    if p[0] < one {
+        return fail(format!("p = {tp} must be ≥ 1"));
+    }
+    if kind == ModelKind::Maxwell && !((p[0] == one && p[1] == one) || p[0] >= two) {
+        return fail(format!(
+            "p = {tp} must lie in [2, ∞) ∪ {{1}} for the Maxwell model"
+        ));
+    }
+    Ok(())
 }
 
 /// Parses `count` comma-separated decimals; `what` names them for the error message.

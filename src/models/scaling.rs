@@ -24,17 +24,20 @@ use crate::arith::Real;
 
 /// 𝓟(P*, v0): the nondimensional parameters of base set `base` at impact speed `v0` (> 0).
 ///
-/// The base set is validated against 𝓟 (P* ∈ ℙ*); the map keeps every point in 𝓟, since B and
-/// Γ are scaled by the same s = v0^(2n/(p+1)) > 0 and σ by a positive factor. The mapped set is
-/// therefore not re-validated field by field: for a range of v0 that check would compare the
-/// enclosures of Γ and B as if independent and refuse admissible input.
+/// The base set is in 𝓟 (P* ∈ ℙ*) as its maker checked it ([`NdParams::new`], or
+/// [`NdParams::parse`] on the decimals as written); here its enclosures are checked as
+/// [`Admissibility::Written`] (a decimal next to a strict bound has an enclosure that touches
+/// it). The map keeps every point in 𝓟, since B and Γ are scaled by the same
+/// s = v0^(2n/(p+1)) > 0 and σ by a positive factor. The mapped set is therefore not
+/// re-validated field by field: for a range of v0 that check would compare the enclosures of Γ
+/// and B as if independent and refuse admissible input.
 pub fn nd_from_base<R: Real>(
     kind: ModelKind,
     base: &NdParams<R>,
     v0: &R,
 ) -> Result<NdParams<R>, ParamError> {
     check_speed(v0)?;
-    base.validate(kind, Admissibility::Open)?;
+    base.validate(kind, Admissibility::Written)?;
     let one = R::one();
     let p1 = base.p.clone() + one.clone();
     let s = v0.pow(&(R::from_int(2) * base.n.clone() / p1.clone()));
@@ -143,6 +146,7 @@ impl<R: Real> PhysicalParams<R> {
                 missing.join(", ")
             )));
         }
+        check_physical_decimals(text)?;
         let [m, k, c, n, p, alpha, beta, gamma, a] = vals.map(Option::unwrap);
         let s = Self {
             m,
@@ -159,8 +163,11 @@ impl<R: Real> PhysicalParams<R> {
         Ok(s)
     }
 
-    /// m, k, A > 0, c ≥ 0 (> 0 for the BWMCM), α ∈ (0, 1), β ≥ 0, γ ∈ [−β, β], n, p ≥ 1.
+    /// The enclosures of values checked exactly ([`check_physical_decimals`]): finite, and what
+    /// outward rounding keeps of m, k, c, A > 0, α ∈ (0, 1), β > 0, γ ∈ (−β, β), n, p ≥ 1 (the
+    /// closed bounds; −sup β ≤ γ ≤ sup β), as [`Admissibility::Written`] does for P.
     pub fn validate(&self, kind: ModelKind) -> Result<(), ParamError> {
+        let _ = kind;
         let all = [
             &self.m,
             &self.k,
@@ -180,41 +187,29 @@ impl<R: Real> PhysicalParams<R> {
                 )));
             }
         }
-        let pos = |x: &R, key: &str| {
-            if x.lo() > 0.0 {
-                Ok(())
-            } else {
-                Err(ParamError(format!("{key} = {} must be > 0", show(x))))
+        for (x, key) in [
+            (&self.m, "m"),
+            (&self.k, "k"),
+            (&self.a, "A"),
+            (&self.c, "c"),
+            (&self.beta, "beta"),
+        ] {
+            if x.lo() < 0.0 {
+                return Err(ParamError(format!("{key} = {} must be > 0", show(x))));
             }
-        };
-        pos(&self.m, "m")?;
-        pos(&self.k, "k")?;
-        pos(&self.a, "A")?;
-        match kind {
-            ModelKind::Maxwell => pos(&self.c, "c")?,
-            ModelKind::Shc if self.c.lo() < 0.0 => {
-                return Err(ParamError(format!("c = {} must be ≥ 0", show(&self.c))));
-            }
-            ModelKind::Shc => {}
         }
-        if !(self.alpha.lo() > 0.0 && self.alpha.hi() < 1.0) {
+        if !(self.alpha.lo() >= 0.0 && self.alpha.hi() <= 1.0) {
             return Err(ParamError(format!(
                 "alpha = {} must lie in (0, 1)",
                 show(&self.alpha)
             )));
         }
-        if self.beta.lo() < 0.0 {
+        if !(self.gamma.lo() >= -self.beta.hi() && self.gamma.hi() <= self.beta.hi()) {
             return Err(ParamError(format!(
-                "beta = {} must be ≥ 0",
-                show(&self.beta)
-            )));
-        }
-        if !(self.gamma.lo() >= -self.beta.lo() && self.gamma.hi() <= self.beta.lo()) {
-            return Err(ParamError(format!(
-                "gamma = {} must lie in [−beta, beta] = [{}, {}]",
+                "gamma = {} must lie in (−beta, beta) = ({}, {})",
                 show(&self.gamma),
-                -self.beta.lo(),
-                self.beta.lo()
+                -self.beta.hi(),
+                self.beta.hi()
             )));
         }
         if self.n.lo() < 1.0 {
@@ -276,7 +271,18 @@ impl<R: Real> PhysicalParams<R> {
                     / self.c.clone()
             }
         };
-        NdParams::new(kind, b, gamma, kappa, sigma, self.n.clone(), self.p.clone())
+        // (in 𝓟 exactly for the values checked by `check_physical_decimals`: B, Γ scale β, γ by
+        // one factor > 0, κ = α/D ∈ (0, 1) for A > 0, σ > 0 for c > 0)
+        NdParams::with_admissibility(
+            kind,
+            Admissibility::Written,
+            b,
+            gamma,
+            kappa,
+            sigma,
+            self.n.clone(),
+            self.p.clone(),
+        )
     }
 
     /// The base parameters P* of this physical system: 𝓟(P*, v0) = the nondimensional set at
@@ -284,6 +290,56 @@ impl<R: Real> PhysicalParams<R> {
     pub fn base(&self, kind: ModelKind) -> Result<NdParams<R>, ParamError> {
         self.nondimensionalize(kind, &R::one())
     }
+}
+
+/// Checks the physical parameters "m=…,k=…,…" as written (each a decimal or a range a..b;
+/// keys and syntax already checked by [`PhysicalParams::parse`]) exactly: every value of every
+/// range, as rationals, must give a nondimensional set in 𝓟 — m, k, c, A > 0, α ∈ (0, 1),
+/// β > 0, γ ∈ (−β, β) (Γ/B = γ/β), n, p ≥ 1. (The paper's BWHCL allows c = 0, β = 0 and
+/// γ = ±β; 𝓟 needs σ > 0, B > 0 and |Γ| < B.) The message names the value as written.
+pub fn check_physical_decimals(text: &str) -> Result<(), ParamError> {
+    use super::params::decimal_range;
+    let mut v: std::collections::HashMap<&str, ([rug::Rational; 2], &str)> = Default::default();
+    for item in text.split(',') {
+        let Some((key, val)) = item.split_once('=') else {
+            continue;
+        };
+        let r = decimal_range(val).map_err(|e| ParamError(format!("{}: {e}", key.trim())))?;
+        v.insert(key.trim(), (r, val.trim()));
+    }
+    let get = |k: &str| {
+        v.get(k)
+            .cloned()
+            .ok_or_else(|| ParamError(format!("missing physical parameter(s): {k}")))
+    };
+    let zero = rug::Rational::new();
+    let one = rug::Rational::from(1);
+    for key in ["m", "k", "c", "A", "beta"] {
+        let (r, t) = get(key)?;
+        if r[0] <= zero {
+            return Err(ParamError(format!("{key} = {t} must be > 0")));
+        }
+    }
+    let (alpha, ta) = get("alpha")?;
+    if !(alpha[0] > zero && alpha[1] < one) {
+        return Err(ParamError(format!("alpha = {ta} must lie in (0, 1)")));
+    }
+    let (beta, tb) = get("beta")?;
+    let (gamma, tg) = get("gamma")?;
+    if !(gamma[0] > -beta[0].clone() && gamma[1] < beta[0]) {
+        let lo = tb.split("..").next().unwrap_or(tb).trim();
+        let lo = lo.strip_prefix('+').unwrap_or(lo);
+        return Err(ParamError(format!(
+            "gamma = {tg} must lie in (−beta, beta) = (-{lo}, {lo}) (the nondimensional Γ/B = γ/β must lie in (−1, 1))"
+        )));
+    }
+    for key in ["n", "p"] {
+        let (r, t) = get(key)?;
+        if r[0] < one {
+            return Err(ParamError(format!("{key} = {t} must be ≥ 1")));
+        }
+    }
+    Ok(())
 }
 
 /// Parses a list of impact speeds "1,2.5,3" (each > 0; for intervals each may be a range a..b).

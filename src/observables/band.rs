@@ -29,7 +29,7 @@
 //! down to a minimum width and then named.
 
 use super::sets::{Inputs, SetEnclosure, prove_over_set_with_slopes, short_centre};
-use crate::engines::taylor::{RigorError, TaylorOptions};
+use crate::engines::taylor::{DEADLINE, RigorError, TaylorOptions};
 use crate::models::{ModelKind, NdParams};
 use inari::Interval;
 use rayon::prelude::*;
@@ -146,6 +146,19 @@ pub struct BandOptions {
     /// pieces at v0 = 0.2, 1 and 4.5, order 12 proves the same slope widths (0.94–1.02×) in
     /// 0.75–0.85× the time of order 16 (order 10: 0.8–0.95×, order 8: slower again).
     pub order: usize,
+    /// Called after each round of the adaptive cut with the share of [a, b] settled so far
+    /// (proved and kept, or final) and the pieces settled: a progress display.
+    pub progress: Option<Progress>,
+}
+
+/// A progress callback of [`BandOptions`]: (share of the range settled, pieces settled).
+#[derive(Clone)]
+pub struct Progress(pub std::sync::Arc<dyn Fn(f64, usize) + Send + Sync>);
+
+impl std::fmt::Debug for Progress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Progress")
+    }
 }
 
 impl Default for BandOptions {
@@ -157,6 +170,7 @@ impl Default for BandOptions {
             first_width: 0.02,
             max_pieces: 20_000,
             order: 12,
+            progress: None,
         }
     }
 }
@@ -178,7 +192,14 @@ pub fn prove_piece(
         base: base.clone(),
         v0,
     };
-    let r: SetEnclosure = prove_over_set_with_slopes(kind, &inputs, opts)?;
+    piece_of(lo, hi, prove_over_set_with_slopes(kind, &inputs, opts)?)
+}
+
+/// The band's piece of [lo, hi] from a proved set enclosure: its affine forms need the slope
+/// enclosures and the centre's values, which a range's enclosure carries; one without them
+/// is refused ("no slope over the piece") — taking de = dT_s = 0 would claim e constant on the
+/// piece. A point piece (lo = hi) needs none.
+fn piece_of(lo: f64, hi: f64, r: SetEnclosure) -> Result<BandPiece, RigorError> {
     let (Some(slope), Some((c, ts_c, e_c))) = (r.slope, r.centre) else {
         if lo < hi {
             // (prove_over_set_with_slopes gives a range its slope; a piece's affine form and
@@ -215,18 +236,6 @@ pub fn prove_piece(
     })
 }
 
-/// The ends of [lo, hi] cut into `k` equal parts: lo and hi exactly, the rest rounded (parts
-/// that share an end share the same double).
-fn equal_cuts(lo: f64, hi: f64, k: usize) -> Vec<f64> {
-    (0..=k)
-        .map(|i| match i {
-            0 => lo,
-            i if i == k => hi,
-            i => lo + (hi - lo) * (i as f64) / (k as f64),
-        })
-        .collect()
-}
-
 /// The parts of a proved piece cut into `m` equal parts, each with its own centre (a point
 /// run) and the piece's slope enclosures and hulls: for v0 in a part [l, h] ⊆ [v_lo, v_hi],
 /// e(v0) ∈ e(c) + [de/dv0](v0 − c) by the mean-value theorem, as [de/dv0] holds on the whole
@@ -238,7 +247,7 @@ pub fn sub_centres(
     m: usize,
     opts: &TaylorOptions,
 ) -> Result<Vec<BandPiece>, RigorError> {
-    equal_cuts(piece.v0_lo, piece.v0_hi, m)
+    short_cuts(piece.v0_lo, piece.v0_hi, m)
         .par_windows(2)
         .map(|w| {
             let (l, h) = (w[0], w[1]);
@@ -276,6 +285,11 @@ type Outcome = (f64, f64, Result<BandPiece, RigorError>);
 /// one not proved is halved; pieces are proved in parallel (rayon). Returns the pieces in order,
 /// each with its result (a piece at the minimum width that `refine` would still cut, as
 /// proved).
+///
+/// Bounded: at most `bo.max_pieces` pieces, and no round starts after `opts.deadline` (a piece
+/// whose run stops there keeps that error, as does every piece not yet tried); after each
+/// round `stop()` may end the cut early (the pieces still to do then carry [`NOT_EXAMINED`]).
+#[allow(clippy::too_many_arguments)]
 fn adapt(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -284,6 +298,7 @@ fn adapt(
     bo: &BandOptions,
     opts: &TaylorOptions,
     refine: impl Fn(BandPiece) -> Refine + Sync,
+    stop: impl Fn() -> bool,
 ) -> Vec<Outcome> {
     let by_width = ((b - a) / bo.first_width).ceil();
     let n = if by_width.is_finite() && by_width < bo.max_pieces as f64 {
@@ -291,14 +306,38 @@ fn adapt(
     } else {
         bo.initial.max(1)
     };
-    let cut = equal_cuts(a, b, n);
+    let cut = short_cuts(a, b, n);
     let mut todo: Vec<(f64, f64)> = cut.windows(2).map(|w| (w[0], w[1])).collect();
     let mut done: Vec<Outcome> = Vec::new();
     let kept: Mutex<Vec<Outcome>> = Mutex::new(Vec::new());
+    let settled = |done: &[Outcome], kept: &Mutex<Vec<Outcome>>| {
+        let kept = kept.lock().expect("no panic");
+        let len: f64 = done.iter().chain(kept.iter()).map(|o| o.1 - o.0).sum();
+        ((len / (b - a)).clamp(0.0, 1.0), done.len() + kept.len())
+    };
     while !todo.is_empty() {
+        if opts.out_of_time() || stop() {
+            let why = if opts.out_of_time() {
+                RigorError {
+                    reason: DEADLINE.into(),
+                    t: 0.0,
+                    width: 0.0,
+                }
+            } else {
+                RigorError {
+                    reason: NOT_EXAMINED.into(),
+                    t: 0.0,
+                    width: 0.0,
+                }
+            };
+            done.extend(todo.drain(..).map(|(lo, hi)| (lo, hi, Err(why.clone()))));
+            break;
+        }
         let results: Vec<(f64, f64, Result<BandPiece, RigorError>, usize)> = todo
             .par_iter()
             .map(|&(lo, hi)| match prove_piece(kind, base, lo, hi, opts) {
+                // out of time: kept as it is (a split would not be tried either)
+                Err(e) if e.out_of_time() => (lo, hi, Err(e), 1),
                 // a piece not proved is halved
                 Err(e) => (lo, hi, Err(e), 2),
                 Ok(p) => match refine(p.clone()) {
@@ -320,8 +359,10 @@ fn adapt(
             }
             // no part narrower than min_width
             let k = k.clamp(2, 64).min(((hi - lo) / bo.min_width) as usize);
-            let cut = equal_cuts(lo, hi, k);
-            let can_split = k >= 2 && cut.windows(2).all(|w| w[0] < w[1]);
+            let cut = short_cuts(lo, hi, k);
+            let can_split = k >= 2
+                && cut.windows(2).all(|w| w[0] < w[1])
+                && !r.as_ref().is_err_and(|e| e.out_of_time());
             let count = done.len() + kept.lock().expect("no panic").len() + todo.len();
             if !can_split || count + k > bo.max_pieces {
                 done.push((lo, hi, r));
@@ -329,10 +370,42 @@ fn adapt(
                 todo.extend(cut.windows(2).map(|w| (w[0], w[1])));
             }
         }
+        if let Some(Progress(f)) = &bo.progress {
+            let (share, pieces) = settled(&done, &kept);
+            f(share, pieces);
+        }
     }
     done.extend(kept.into_inner().expect("no panic"));
     done.sort_by(|x, y| x.0.total_cmp(&y.0));
     done
+}
+
+/// The reason of a piece the cut did not examine, having been stopped early (e.g. once a
+/// monotonicity claim was refuted).
+pub const NOT_EXAMINED: &str = "not examined (the search stopped early)";
+
+/// The ends of [lo, hi] cut into `k` parts of about equal length, lo and hi exactly; each
+/// inner end a double with a short exact decimal (the coarsest multiple of a power of two
+/// within a fifth of a part of the equal cut), so that a piece's ends are printed exactly and
+/// neighbouring pieces share their end in print too. Parts that share an end share the same
+/// double.
+pub fn short_cuts(lo: f64, hi: f64, k: usize) -> Vec<f64> {
+    let part = (hi - lo) / k as f64;
+    let mut out = Vec::with_capacity(k + 1);
+    out.push(lo);
+    for i in 1..k {
+        let x = lo + (hi - lo) * (i as f64) / (k as f64);
+        let c = short_centre(x - part / 5.0, x + part / 5.0);
+        out.push(if c > *out.last().expect("lo") && c < hi {
+            c
+        } else {
+            x
+        });
+    }
+    if k > 0 {
+        out.push(hi);
+    }
+    out
 }
 
 /// The options of the band's runs: `bo.order`, and a largest width. A wide piece's run fails
@@ -365,40 +438,70 @@ pub fn prove_band(
     opts: &TaylorOptions,
 ) -> Result<Band, RigorError> {
     let opts = &run_options(bo, opts);
-    let done = adapt(kind, base, a, b, bo, opts, |p| {
-        let t = p.thickness();
-        if t <= bo.thickness {
-            return Refine::Keep(vec![p]);
-        }
-        // sub-centres: the slope term wid[de]·w/2 falls like 1/m, the centre's own width stays
-        let own = p.e_c.wid() * 2.0 + 8.0 * f64::EPSILON * p.e.mag().max(1.0);
-        let room = bo.thickness - own;
-        let m = ((t - own) / room).ceil();
-        if room > 0.0
-            && m.is_finite()
-            && m <= MAX_SUB_CENTRES as f64
-            && let Ok(parts) = sub_centres(kind, base, &p, m as usize, opts)
-            && parts.iter().all(|q| q.thickness() <= bo.thickness)
-        {
-            return Refine::Keep(parts);
-        }
-        // cut for new range runs, aimed at AIM × the target
-        let parts = (t / (AIM * bo.thickness)).powf(1.0 / THICKNESS_POWER);
-        Refine::Cut(parts.ceil().max(2.0) as usize)
-    });
+    let done = adapt(
+        kind,
+        base,
+        a,
+        b,
+        bo,
+        opts,
+        |p| {
+            let t = p.thickness();
+            if t <= bo.thickness {
+                return Refine::Keep(vec![p]);
+            }
+            // sub-centres: the slope term wid[de]·w/2 falls like 1/m, the centre's own width stays
+            let own = p.e_c.wid() * 2.0 + 8.0 * f64::EPSILON * p.e.mag().max(1.0);
+            let room = bo.thickness - own;
+            let m = ((t - own) / room).ceil();
+            if room > 0.0
+                && m.is_finite()
+                && m <= MAX_SUB_CENTRES as f64
+                && let Ok(parts) = sub_centres(kind, base, &p, m as usize, opts)
+                && parts.iter().all(|q| q.thickness() <= bo.thickness)
+            {
+                return Refine::Keep(parts);
+            }
+            // cut for new range runs, aimed at AIM × the target
+            let parts = (t / (AIM * bo.thickness)).powf(1.0 / THICKNESS_POWER);
+            Refine::Cut(parts.ceil().max(2.0) as usize)
+        },
+        || false,
+    );
+    // what was proved, for the message of a band that is not
+    let proved_len: f64 = done
+        .iter()
+        .filter(|o| o.2.as_ref().is_ok_and(|p| p.thickness() <= bo.thickness))
+        .map(|o| o.1 - o.0)
+        .sum();
+    let proved_count = done
+        .iter()
+        .filter(|o| o.2.as_ref().is_ok_and(|p| p.thickness() <= bo.thickness))
+        .count();
+    let so_far = || {
+        format!(
+            "; proved so far: {proved_count} pieces covering {:.1} % of the range",
+            100.0 * proved_len / (b - a)
+        )
+    };
     let mut pieces = Vec::with_capacity(done.len());
     for (lo, hi, r) in done {
         let p = r.map_err(|e| RigorError {
-            reason: format!("for v0 in [{lo}, {hi}]: {}", e.reason),
+            reason: if e.out_of_time() {
+                format!("{} for v0 in [{lo}, {hi}] and after{}", e.reason, so_far())
+            } else {
+                format!("for v0 in [{lo}, {hi}]: {}{}", e.reason, so_far())
+            },
             ..e
         })?;
         if p.thickness() > bo.thickness {
             return Err(RigorError {
                 reason: format!(
                     "for v0 in [{lo}, {hi}]: the band is {:e} thick (the target is {:e}) at the \
-                     smallest piece or the piece budget",
+                     smallest piece or the piece budget{}",
                     p.thickness(),
-                    bo.thickness
+                    bo.thickness,
+                    so_far()
                 ),
                 t: 0.0,
                 width: p.thickness(),
@@ -414,13 +517,21 @@ pub fn prove_band(
 pub struct Monotonicity {
     /// Proved strictly decreasing on every piece: the pieces and their slope enclosures.
     pub pieces: Vec<(f64, f64, Interval)>,
-    /// The sub-ranges where it could not be proved (merged), with the reason.
+    /// Proved strictly increasing (inf de/dv0 > 0): the sub-ranges (neighbouring pieces merged)
+    /// and the hulls of their slope enclosures — a refutation of the claim on [a, b].
+    pub increasing: Vec<(f64, f64, Interval)>,
+    /// The sub-ranges where it could not be decided (merged), with the reason.
     pub undecided: Vec<(f64, f64, String)>,
 }
 
 impl Monotonicity {
+    /// e strictly decreasing on all of [a, b].
     pub fn proved(&self) -> bool {
-        self.undecided.is_empty()
+        self.undecided.is_empty() && self.increasing.is_empty()
+    }
+    /// e strictly increasing on a sub-range: the claim is false.
+    pub fn refuted(&self) -> bool {
+        !self.increasing.is_empty()
     }
     /// The largest proved slope (sup of de/dv0 over all pieces): e decreases at least this fast.
     pub fn max_slope(&self) -> f64 {
@@ -431,8 +542,11 @@ impl Monotonicity {
     }
 }
 
-/// Proves e(v0) strictly decreasing on [a, b] (sup de/dv0 < 0 on every piece), or names the
-/// sub-ranges where it cannot.
+/// Decides whether e(v0) is strictly decreasing on [a, b]: proved (sup de/dv0 < 0 on every
+/// piece), refuted (inf de/dv0 > 0 on a piece: e strictly increasing there — the search stops
+/// after the round that finds one), or neither on the sub-ranges it names (the slope's sign
+/// undecided down to the minimum width or the piece budget, a run not proved, or the time
+/// budget of `opts.deadline`).
 pub fn prove_decreasing(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -442,15 +556,29 @@ pub fn prove_decreasing(
     opts: &TaylorOptions,
 ) -> Monotonicity {
     let opts = &run_options(bo, opts);
-    let done = adapt(kind, base, a, b, bo, opts, |p| {
-        if p.de.sup() < 0.0 {
-            Refine::Keep(vec![p])
-        } else {
-            Refine::Cut(2)
-        }
-    });
+    let refuted = std::sync::atomic::AtomicBool::new(false);
+    let done = adapt(
+        kind,
+        base,
+        a,
+        b,
+        bo,
+        opts,
+        |p| {
+            if p.de.sup() < 0.0 {
+                Refine::Keep(vec![p])
+            } else if p.de.inf() > 0.0 {
+                refuted.store(true, std::sync::atomic::Ordering::Relaxed);
+                Refine::Keep(vec![p])
+            } else {
+                Refine::Cut(2)
+            }
+        },
+        || refuted.load(std::sync::atomic::Ordering::Relaxed),
+    );
     let mut out = Monotonicity {
         pieces: Vec::new(),
+        increasing: Vec::new(),
         undecided: Vec::new(),
     };
     for (lo, hi, r) in done {
@@ -459,11 +587,33 @@ pub fn prove_decreasing(
                 out.pieces.push((lo, hi, p.de));
                 continue;
             }
+            Ok(p) if p.de.inf() > 0.0 => {
+                // neighbours merged: e increases on the union (the slopes' hull holds there)
+                match out.increasing.last_mut() {
+                    Some(last) if last.1 == lo => {
+                        last.1 = hi;
+                        last.2 = last.2.convex_hull(p.de);
+                    }
+                    _ => out.increasing.push((lo, hi, p.de)),
+                }
+                continue;
+            }
             Ok(p) => format!("de/dv0 ∈ [{:e}, {:e}] is not < 0", p.de.inf(), p.de.sup()),
             Err(e) => e.reason,
         };
+        // neighbours merged (with the first one's reason) when they are undecided for the
+        // same kind of reason: the time budget, not examined, or the rest
+        let class = |w: &str| {
+            if w.starts_with(DEADLINE) {
+                0
+            } else if w.starts_with(NOT_EXAMINED) {
+                1
+            } else {
+                2
+            }
+        };
         match out.undecided.last_mut() {
-            Some(last) if last.1 == lo => last.1 = hi,
+            Some(last) if last.1 == lo && class(&last.2) == class(&why) => last.1 = hi,
             _ => out.undecided.push((lo, hi, why)),
         }
     }
@@ -473,6 +623,74 @@ pub fn prove_decreasing(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A range's enclosure without a slope cannot make a piece (its affine form would claim e
+    /// constant on it); a point's can (lo = hi), and a range's with a slope gives its affine
+    /// form.
+    #[test]
+    fn a_piece_without_a_slope_is_refused() {
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
+        let bare = SetEnclosure {
+            ts: iv(3.0, 3.1),
+            e: iv(0.8, 0.9),
+            slope: None,
+            centre: None,
+            steps: 1,
+        };
+        let e = piece_of(1.0, 1.5, bare.clone()).unwrap_err();
+        assert_eq!(e.reason, "no slope over the piece");
+        let p = piece_of(1.0, 1.0, bare.clone()).unwrap();
+        assert_eq!((p.v0_lo, p.v0_hi, p.v0_c), (1.0, 1.0, 1.0));
+        assert!(p.de.inf() == 0.0 && p.de.sup() == 0.0 && p.e == bare.e);
+        let sloped = SetEnclosure {
+            slope: Some(super::super::sets::Slope {
+                input: 6,
+                ts: iv(0.1, 0.2),
+                e: iv(-0.3, -0.2),
+            }),
+            centre: Some((1.25, iv(3.05, 3.05), iv(0.85, 0.85))),
+            ..bare
+        };
+        let p = piece_of(1.0, 1.5, sloped).unwrap();
+        assert_eq!(p.v0_c, 1.25);
+        assert!(p.de.inf() == -0.3 && p.dts.sup() == 0.2);
+        // e(v0) at the piece's ends from its affine form, inside its hull
+        assert!(p.e_at(iv(1.5, 1.5)).unwrap().subset(iv(0.8, 0.9)));
+    }
+
+    /// The cuts of a range: its ends exactly, inner ends with short exact decimals (each a
+    /// multiple of a power of two no finer than needed), increasing, each within a fifth of a
+    /// part of the equal cut.
+    #[test]
+    fn cuts_have_short_ends_and_cover_the_range() {
+        for (lo, hi, k) in [
+            (0.1, 5.0, 245),
+            (0.5, 0.7, 16),
+            (1.0, 1.0 + 1e-9, 7),
+            (3.0, 4.0, 2),
+        ] {
+            let c = short_cuts(lo, hi, k);
+            assert_eq!(c.len(), k + 1);
+            assert_eq!((c[0], c[k]), (lo, hi));
+            let part = (hi - lo) / k as f64;
+            for (i, w) in c.windows(2).enumerate() {
+                assert!(w[0] < w[1], "{lo} {hi} {k}: {w:?}");
+                if i > 0 {
+                    let x = lo + part * i as f64;
+                    assert!((w[0] - x).abs() <= part / 5.0 + 4.0 * f64::EPSILON * x.abs());
+                }
+            }
+            // short: the exact decimal of an inner end has few digits against the part
+            for &x in &c[1..k] {
+                let digits = format!("{}", rug::Rational::from_f64(x).unwrap().denom()).len();
+                let need = ((1.0 / part).log10().ceil() as usize) + 3;
+                assert!(
+                    digits <= need,
+                    "{x:e}: denominator of {digits} digits (part {part:e})"
+                );
+            }
+        }
+    }
 
     /// The band of the four Table 1 sets on [0.1, 5]: `cargo test --release --lib
     /// band::tests::explore_band -- --ignored --nocapture` (THICK overrides the target).

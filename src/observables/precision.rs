@@ -39,6 +39,7 @@ use crate::engines::taylor::{RigorError, TaylorOptions, integrate_to_separation}
 use crate::models::scaling::nd_from_base;
 use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use crate::observables::decimal::{Rounding, directed_rational};
+use crate::observables::rigorous::rigorous_impact;
 use rug::{Float, Rational};
 
 /// The precisions the engine is compiled at (bits of the MPFR ends).
@@ -199,6 +200,56 @@ pub fn rigorous_impact_digits(
     rigorous_impact_bits(kind, p, bits, &options_for_digits(digits, base))
 }
 
+/// [`rigorous_impact_digits`], never proving less than the f64-interval engine: where the
+/// precise run fails (but not for lack of time), the case is proved at f64 precision and that
+/// enclosure returned (`bits` 53) with the precise run's error beside it — a proof with fewer
+/// digits, never "not proved" where the double-precision engine proves.
+pub fn rigorous_impact_digits_or_f64(
+    kind: ModelKind,
+    p: &ParamText,
+    digits: u32,
+    base: &TaylorOptions,
+) -> Result<(PreciseEnclosure, Option<RigorError>), RigorError> {
+    let precise = match rigorous_impact_digits(kind, p, digits, base) {
+        Ok(enc) => return Ok((enc, None)),
+        Err(e) if e.out_of_time() || base.out_of_time() => return Err(e),
+        Err(e) => e,
+    };
+    let params = p
+        .params::<inari::Interval>(kind)
+        .map_err(|reason| RigorError {
+            reason,
+            t: 0.0,
+            width: 0.0,
+        })?;
+    let f64_run = match kind {
+        ModelKind::Shc => {
+            rigorous_impact(&Shc::new(params), base).map(|r| (r.ts, r.e, r.flow.len()))
+        }
+        ModelKind::Maxwell => {
+            rigorous_impact(&Maxwell::new(params), base).map(|r| (r.ts, r.e, r.flow.len()))
+        }
+    };
+    let Ok((ts, e, pieces)) = f64_run else {
+        return Err(precise);
+    };
+    let ends = |x: inari::Interval| -> Option<[Rational; 2]> {
+        Some([Rational::from_f64(x.inf())?, Rational::from_f64(x.sup())?])
+    };
+    match (ends(ts), ends(e)) {
+        (Some(ts), Some(e)) => Ok((
+            PreciseEnclosure {
+                bits: 53,
+                ts,
+                e,
+                pieces,
+            },
+            Some(precise),
+        )),
+        _ => Err(precise),
+    }
+}
+
 /// One rung of the precision fallback: the precision and the digits whose tunables
 /// ([`options_for_digits`]) it runs with.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -307,7 +358,8 @@ impl Decision {
 /// run again on [`LADDER`]'s rungs up to `budget.max_bits`, each within `budget.seconds`,
 /// until one proves it, one fails for a reason a higher precision cannot remove
 /// ([`RigorError::precision_may_help`], e.g. the time budget), or the rungs run out. Nothing
-/// is tried when `first` is not such a failure either.
+/// is tried when `first` is not such a failure either. Each rung stops at its own budget or
+/// at `base`'s deadline, whichever comes first; none starts after that deadline.
 ///
 /// Why it decides cases: the separation condition F ≤ 0 ∧ V ≥ 0 is decided only where F's
 /// enclosure excludes 0. Near a Hunt–Crossley separation F = |X|^p(1 − σV) with 1 − σV
@@ -328,9 +380,14 @@ pub fn decide(
         return out;
     }
     for rung in LADDER.iter().filter(|r| r.bits <= budget.max_bits) {
+        if base.out_of_time() {
+            break;
+        }
         let start = std::time::Instant::now();
+        // the rung's own budget, within the caller's deadline
+        let own = start + std::time::Duration::from_secs_f64(budget.seconds.max(0.0));
         let opts = TaylorOptions {
-            deadline: Some(start + std::time::Duration::from_secs_f64(budget.seconds.max(0.0))),
+            deadline: Some(base.deadline.map_or(own, |d| d.min(own))),
             event_slack: base.event_slack.max(FALLBACK_EVENT_SLACK),
             ..options_for_digits(rung.digits, base)
         };

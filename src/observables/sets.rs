@@ -35,7 +35,7 @@ use crate::engines::taylor::rec::Rec;
 use crate::engines::taylor::tape::{Tape, Workspace};
 use crate::engines::taylor::{RigorError, TaylorOptions, integrate_system};
 use crate::models::scaling::{PhysicalParams, nd_from_base};
-use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, ParamError, Shc};
+use crate::models::{Admissibility, CollisionModel, Maxwell, ModelKind, NdParams, ParamError, Shc};
 use inari::Interval;
 use rayon::prelude::*;
 
@@ -142,11 +142,15 @@ impl<R: Real> Inputs<R> {
         }
     }
 
-    /// The nondimensional parameters (validated against 𝓟 for every value of the ranges).
+    /// The nondimensional parameters. The inputs were checked against 𝓟 as written, every
+    /// value of the ranges ([`NdParams::parse`], [`PhysicalParams::parse`]); their enclosures
+    /// (and those of sub-ranges, or of other number types) are checked as
+    /// [`Admissibility::Written`].
     pub fn nd(&self, kind: ModelKind) -> Result<NdParams<R>, ParamError> {
         match self {
-            Inputs::Nd(p) => NdParams::new(
+            Inputs::Nd(p) => NdParams::with_admissibility(
                 kind,
+                Admissibility::Written,
                 p.b.clone(),
                 p.gamma.clone(),
                 p.kappa.clone(),
@@ -289,7 +293,8 @@ fn prove(
     {
         Ok(r) => r,
         // a derivative that cannot be carried: the hull of the parameters as components alone
-        Err(e) if hull_fallback => {
+        // (not once the time budget is spent)
+        Err(e) if hull_fallback && !e.out_of_time() => {
             return match kind {
                 ModelKind::Shc => hull::<_, 3, 13>(Shc::new, kind, inputs, &ranges, opts),
                 ModelKind::Maxwell => hull::<_, 4, 14>(Maxwell::new, kind, inputs, &ranges, opts),
@@ -381,6 +386,21 @@ pub fn prove_over_set_split(
     while let Some(inp) = todo.pop() {
         match prove_over_set(kind, &inp, opts) {
             Ok(r) => done.push(r),
+            // what no split changes: the budget is spent, or the condition was proved to fail
+            // up to the horizon on this piece (no separation there: the result for the range
+            // only if it is the whole range)
+            Err(e) if e.out_of_time() => {
+                return Err(RigorError {
+                    reason: format!(
+                        "{} ({} pieces of the range proved, {} not)",
+                        e.reason,
+                        done.len(),
+                        todo.len() + 1
+                    ),
+                    ..e
+                });
+            }
+            Err(e) if e.no_separation() && pieces == 1 => return Err(e),
             Err(e) => {
                 let vals = inp.values();
                 let widest = (0..vals.len())

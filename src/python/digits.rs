@@ -12,7 +12,7 @@ use super::run::{compute_rows, py_error};
 use bwcl::models::ModelKind;
 use bwcl::observables::precision::{
     PreciseEnclosure, bits_for_digits, options_for_digits, outward_f64, outward_text,
-    rigorous_impact_digits, width_text,
+    rigorous_impact_digits_or_f64, width_text,
 };
 use inari::Interval;
 use pyo3::exceptions::PyValueError;
@@ -56,9 +56,26 @@ pub fn cor_digits<'py>(
         })
         .collect();
     let jobs = texts(cases).map_err(py_error)?;
+    // (never less than the f64-interval engine proves: its enclosure, bits 53, with a reason)
     let (rows, seconds, used) = compute_rows(py, threads, &jobs, |(_, p)| {
-        rigorous_impact_digits(kind, p, d, &opts).map_err(|e| e.to_string())
+        rigorous_impact_digits_or_f64(kind, p, d, &opts)
+            .map_err(|e| super::cli::input::reason_text(&e, &a.engine))
     })?;
+    let notes: Vec<Option<String>> = rows
+        .iter()
+        .map(|r| {
+            r.as_ref().ok().and_then(|(_, why)| {
+                why.as_ref().map(|e| {
+                    format!(
+                        "{digits} digits not reached at {bits} bits ({}): the f64-interval engine's enclosure",
+                        e.reason
+                    )
+                })
+            })
+        })
+        .collect();
+    let rows: Vec<Result<PreciseEnclosure, String>> =
+        rows.into_iter().map(|r| r.map(|(enc, _)| enc)).collect();
     let ok = |r: &Result<PreciseEnclosure, String>| r.as_ref().ok().cloned();
     let proved: Vec<Option<PreciseEnclosure>> = rows.iter().map(ok).collect();
     let out = PyDict::new(py);
@@ -117,13 +134,20 @@ pub fn cor_digits<'py>(
     };
     out.set_item("width_ts_text", wtext(&|p| p.width_ts()))?;
     out.set_item("width_e_text", wtext(&|p| p.width_e()))?;
+    // a proved case's reason is the note of an f64 enclosure in place of the digits
     out.set_item(
         "reason",
         rows.iter()
-            .map(|r| r.as_ref().err().cloned())
+            .zip(&notes)
+            .map(|(r, n)| r.as_ref().err().cloned().or(n.clone()))
             .collect::<Vec<_>>(),
     )?;
-    out.set_item("bits", vec![bits; rows.len()])?;
+    out.set_item(
+        "bits",
+        rows.iter()
+            .map(|r| r.as_ref().map_or(bits, |p| p.bits))
+            .collect::<Vec<_>>(),
+    )?;
     out.set_item(
         "fallback",
         vec![None::<Vec<(u32, f64, bool, String)>>; rows.len()],

@@ -47,7 +47,15 @@ pub fn cor_rigorous<'py>(
     let pieces = input::pieces(&a.engine);
     let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
     let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
-        rigorous_row(kind, c, &opts, pieces, false, &fallback)
+        rigorous_row(
+            kind,
+            c,
+            &opts,
+            pieces,
+            false,
+            &fallback,
+            a.engine.time_limit,
+        )
     })?;
     let d = PyDict::new(py);
     d.set_item("model", kind.name())?;

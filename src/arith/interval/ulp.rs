@@ -348,15 +348,57 @@ fn div_dir(a: f64, b: f64, up: bool) -> f64 {
     }
 }
 
+/// [a, b]/[c, d] for a divisor that reaches 0 ([`div_at_zero`]'s cases), every end a number.
+///
+/// The quotient set {x/y : x ∈ [a, b], y ∈ [c, d], y ≠ 0} (IEEE 1788, as inari): for a
+/// divisor with one end at 0, y of one sign s and |y| ∈ (0, max |c|, |d|]: a dividend of one
+/// sign gives the half-line from its end nearest 0 over the divisor's far end outward — for
+/// y ∈ (0, d]: [a/d, +∞] (a ≥ 0), [−∞, b/d] (b ≤ 0); for y ∈ [c, 0): [−∞, a/c] (a ≥ 0),
+/// [b/c, +∞] (b ≤ 0) — each end rounded outward; a dividend across 0, or a divisor across 0
+/// or equal to [0, 0], gives [−∞, +∞]. Unlike IEEE 1788, [0, 0]/[c, d] is [−∞, +∞] too: where
+/// y = 0 is possible the quotient may be 0/0, which no caller should read as 0.
+#[cold]
+fn div_at_zero(a: f64, b: f64, c: f64, d: f64) -> Ulp {
+    let dividend_zero = a == 0.0 && b == 0.0;
+    if dividend_zero || (c < 0.0 && d > 0.0) || (c == 0.0 && d == 0.0) {
+        return Ulp::ENTIRE;
+    }
+    match (c == 0.0, a >= 0.0, b <= 0.0) {
+        // y ∈ (0, d]
+        (true, true, _) => Ulp {
+            lo: div_dir(a, d, false),
+            hi: f64::INFINITY,
+        },
+        (true, _, true) => Ulp {
+            lo: f64::NEG_INFINITY,
+            hi: div_dir(b, d, true),
+        },
+        // y ∈ [c, 0)
+        (false, true, _) => Ulp {
+            lo: f64::NEG_INFINITY,
+            hi: div_dir(a, c, true),
+        },
+        (false, _, true) => Ulp {
+            lo: div_dir(b, c, false),
+            hi: f64::INFINITY,
+        },
+        _ => Ulp::ENTIRE,
+    }
+}
+
 impl Div for Ulp {
     type Output = Self;
     /// For a divisor of certain sign, [min, max] of the endpoint quotients, each rounded in its
-    /// direction; [−∞, +∞] when the divisor reaches 0.
+    /// direction; for a divisor with an end at 0 the half-line of [`div_at_zero`], [−∞, +∞]
+    /// when it lies across 0.
     #[inline]
     fn div(self, o: Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
-        if !(c > 0.0 || d < 0.0) || a.is_nan() || b.is_nan() {
+        if a.is_nan() || b.is_nan() || c.is_nan() || d.is_nan() {
             return Self::ENTIRE;
+        }
+        if !(c > 0.0 || d < 0.0) {
+            return div_at_zero(a, b, c, d);
         }
         // divisor of certain sign: x/y is monotone in x for every y (increasing for y > 0),
         // and in y for every x of one sign, so each end is one endpoint quotient whichever
@@ -636,7 +678,11 @@ mod tests {
                     assert!(contains(d, lo, hi), "{x:?} / {y:?} = {d:?}");
                 }
             } else {
-                assert_eq!(x / y, Ulp::ENTIRE);
+                // a divisor reaching 0: the half-line around inari's quotient set (or the
+                // whole line)
+                let d = x / y;
+                let id = to(x) / to(y);
+                assert!(id.subset(d.interval()), "{x:?} / {y:?}: {d:?} vs {id:?}");
             }
             if p.lo.is_finite() && p.hi.is_finite() {
                 let mut ps = Vec::new();
@@ -851,6 +897,76 @@ mod tests {
         }
         assert_eq!(u(0.25, 0.5) + u(1.0, 2.0), u(1.25, 2.5));
         assert_eq!(u(0.25, 0.5) - u(1.0, 2.0), u(-1.75, -0.5));
+    }
+
+    /// A divisor with an end at 0: the half-line of the quotient set, as inari's division
+    /// (IEEE 1788), rounded outward — checked against inari and, for finite ends, the exact
+    /// rational quotients of the dividend's end nearest 0 and the divisor's far end; across 0,
+    /// [0, 0] or a dividend [0, 0]: the whole line.
+    #[test]
+    fn quotients_by_a_divisor_at_zero_are_half_lines() {
+        let u = |lo: f64, hi: f64| Ulp { lo, hi };
+        let mut next = crate::arith::interval::xorshift(0x9e3779b97f4a7c15);
+        let mut unit = || (next() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut cases = vec![
+            (u(1.0, 2.0), u(0.0, 3.0)),
+            (u(0.0, 2.0), u(0.0, 3.0)),
+            (u(-2.0, -1.0), u(0.0, 3.0)),
+            (u(-2.0, 0.0), u(0.0, 3.0)),
+            (u(1.0, 2.0), u(-3.0, 0.0)),
+            (u(-2.0, -1.0), u(-3.0, 0.0)),
+            (u(1.0, f64::INFINITY), u(0.0, 3.0)),
+            (u(0.1, 0.3), u(0.0, 0.7)),
+            (u(-0.3, -0.1), u(-0.7, 0.0)),
+            (u(1e-300, 1e300), u(0.0, 1e-300)),
+        ];
+        for _ in 0..2000 {
+            let (x0, x1) = (unit() * 10.0 - 5.0, unit() * 10.0 - 5.0);
+            let (a, b) = (x0.min(x1), x0.max(x1));
+            let d = unit() * 4.0;
+            cases.push((u(a, b), if unit() < 0.5 { u(0.0, d) } else { u(-d, 0.0) }));
+        }
+        for (x, y) in cases {
+            let r = x / y;
+            let reference = Ulp::of(x.interval() / y.interval());
+            let zero_dividend = x.lo == 0.0 && x.hi == 0.0;
+            if zero_dividend || (y.lo == 0.0 && y.hi == 0.0) {
+                assert_eq!(r, Ulp::ENTIRE, "{x:?} / {y:?}");
+                continue;
+            }
+            // inari's enclosure, at most an ulp wider (the residual method steps the quotient
+            // of tiny operands unconditionally)
+            assert!(
+                reference.interval().subset(r.interval())
+                    && r.lo >= reference.lo.next_down()
+                    && r.hi <= reference.hi.next_up()
+                    && r.lo.is_finite() == reference.lo.is_finite()
+                    && r.hi.is_finite() == reference.hi.is_finite(),
+                "{x:?} / {y:?}: {r:?}, inari gives {reference:?}"
+            );
+            // the finite end: the exact quotient of the dividend's end nearest 0 and the
+            // divisor's far end lies on the right side of it, within an ulp
+            let far = if y.lo == 0.0 { y.hi } else { y.lo };
+            if r.lo.is_finite() {
+                let near = if y.lo == 0.0 { x.lo } else { x.hi };
+                if near.is_finite() && far != 0.0 {
+                    let exact = q(near) / q(far);
+                    assert!(q(r.lo) <= exact && exact - q(r.lo) <= q(r.lo.next_up() - r.lo).abs());
+                }
+            }
+            if r.hi.is_finite() {
+                let near = if y.lo == 0.0 { x.hi } else { x.lo };
+                if near.is_finite() && far != 0.0 {
+                    let exact = q(near) / q(far);
+                    assert!(
+                        exact <= q(r.hi) && q(r.hi) - exact <= q(r.hi - r.hi.next_down()).abs()
+                    );
+                }
+            }
+        }
+        // across 0: the whole line
+        assert_eq!(u(1.0, 2.0) / u(-1.0, 1.0), Ulp::ENTIRE);
+        assert_eq!(u(0.0, 0.0) / u(0.0, 1.0), Ulp::ENTIRE);
     }
 
     /// |x| is [x] for x ≥ 0, −[x] for x ≤ 0, [0, max(−lo, hi)] across 0.

@@ -81,11 +81,17 @@ impl<const N: usize, I: Enclosure> Piece<N, I> {
 #[derive(Clone, Debug)]
 pub struct Flow<const N: usize, I = Interval> {
     pub pieces: Vec<Piece<N, I>>,
+    /// Taylor steps tried that were not taken (refused: too short, at a switching surface, or
+    /// their kink crossing unresolved): the work the step choice spent in vain.
+    pub refused_taylor: usize,
 }
 
 impl<const N: usize, I> Default for Flow<N, I> {
     fn default() -> Self {
-        Self { pieces: Vec::new() }
+        Self {
+            pieces: Vec::new(),
+            refused_taylor: 0,
+        }
     }
 }
 

@@ -31,6 +31,7 @@ pub use flow::{Flow, Piece};
 
 use crate::arith::Enclosure;
 use crate::models::CollisionModel;
+use step::StepOut;
 use tape::{Tape, Workspace};
 
 use std::fmt;
@@ -135,6 +136,17 @@ pub const CANNOT_CROSS: &str = "cannot cross a switching surface with a proved l
 pub const UNDECIDABLE: &str = "grazing or undecidable separation";
 /// The reason of a run stopped at [`TaylorOptions::deadline`].
 pub const DEADLINE: &str = "the time budget ran out";
+/// The start of the reason of a run that reached its horizon with the separation condition
+/// proved to fail on all of [0, horizon]: a proved result (T_s > horizon), not a failure.
+pub const NO_SEPARATION: &str = "no separation before the horizon";
+
+impl TaylorOptions {
+    /// Whether [`TaylorOptions::deadline`] has passed.
+    pub fn out_of_time(&self) -> bool {
+        self.deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+    }
+}
 
 impl RigorError {
     /// Whether the same case may be proved with narrower enclosures (at a higher precision):
@@ -145,6 +157,17 @@ impl RigorError {
         [GREW_TOO_WIDE, CANNOT_CROSS, UNDECIDABLE]
             .iter()
             .any(|r| self.reason.starts_with(r))
+    }
+
+    /// The run stopped at its deadline ([`DEADLINE`]).
+    pub fn out_of_time(&self) -> bool {
+        self.reason.starts_with(DEADLINE)
+    }
+
+    /// The run proved that the separation condition fails on all of [0, T] for T = `self.t`,
+    /// the horizon ([`NO_SEPARATION`]): T_s > T.
+    pub fn no_separation(&self) -> bool {
+        self.reason.starts_with(NO_SEPARATION)
     }
 }
 
@@ -265,6 +288,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
     // widths that are a few ulps at f64 precision, scaled to the precision of `I` (exactly
     // the f64 constants for f64 intervals)
     let ulps = I::epsilon() / f64::EPSILON;
+    let beyond_f64 = I::epsilon() < f64::EPSILON;
     let start_width = (START_WIDTH * ulps).max(opts.cross_tol.min(START_WIDTH));
     let mut x = x0;
     // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None (a box)
@@ -284,10 +308,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 width: w,
             });
         }
-        if opts
-            .deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
-        {
+        if opts.out_of_time() {
             return Err(RigorError {
                 reason: DEADLINE.into(),
                 t,
@@ -295,9 +316,19 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             });
         }
         if t >= opts.horizon {
+            // every piece so far was cleared, unless a stretch is still pending
+            if let Some(p) = pending {
+                return Err(RigorError {
+                    reason: format!(
+                        "{UNDECIDABLE}: the condition could neither be excluded nor proved on [{p}, {t}] (the horizon)"
+                    ),
+                    t,
+                    width: w,
+                });
+            }
             return Err(RigorError {
                 reason: format!(
-                    "no separation before the horizon T = {} (the condition was proved to fail up to it)",
+                    "{NO_SEPARATION} T = {} (the condition was proved to fail up to it)",
                     opts.horizon
                 ),
                 t,
@@ -359,6 +390,22 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             .filter_map(|&i| reach(i).map(|h| (i, h)))
             .filter(|&(_, h)| h < sing_opts.near);
         let first = flow.pieces.is_empty();
+        // a singular step is taken when it adds little width and its piece clears the
+        // separation condition; one refused for that is still a proved step, kept as the last
+        // resort where no low-order step can cross either (at a precision beyond f64 the
+        // low-order steps' tolerance is far below what a step of a few ulps of t adds)
+        let mut spare: Option<StepOut<N, I>> = None;
+        // (beyond f64 only: there the precision fallback re-runs a case that cannot cross)
+        let mut offer = |o: StepOut<N, I>, ok: bool| {
+            if ok {
+                Some(o)
+            } else {
+                if beyond_f64 {
+                    spare = Some(o);
+                }
+                None
+            }
+        };
         let singular_out = match (near.next(), near.next()) {
             // the start (the models start with two components at their branch points): one
             // step in the expansions of [`singular::start`], taken when it adds little width;
@@ -373,7 +420,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 sing.get_or_insert_with(|| singular::Singular::new(tape, sing_opts.clone()))
                     .as_mut()
                     .and_then(|s| s.try_start(t, &x))
-                    .filter(|o| {
+                    .and_then(|o| {
                         let ok = width(&o.x1) <= start_width
                             && matches!(
                                 event::scan_piece(tape, &mut ev_ws, &o.piece, opts.event_forms),
@@ -387,7 +434,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                                 if ok { "taken" } else { "refused" }
                             );
                         }
-                        ok
+                        offer(o, ok)
                     })
             }
             (Some((i, h)), None) if w <= WIDE_SET && opts.singular => sing
@@ -395,7 +442,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 .as_mut()
                 .and_then(|s| {
                     let r = if opts.qr { rep.as_ref() } else { None };
-                    s.try_step(t, &x, r, i, h).filter(|o| {
+                    s.try_step(t, &x, r, i, h).and_then(|o| {
                         // taken when it adds little width (the expansions' remainder grows like
                         // δ^M: too far from the surface the step is refused, and tried again
                         // nearer)
@@ -405,7 +452,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                                 event::Verdict::Cleared
                             );
                         s.taken(ok, h);
-                        ok
+                        offer(o, ok)
                     })
                 }),
             _ => None,
@@ -436,6 +483,7 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                 if opts.qr { rep.as_ref() } else { None },
             ) {
                 Err(why) => {
+                    flow.refused_taylor += 1;
                     if trace {
                         let why = match why {
                             step::TaylorFail::AtSurface => "at a switching surface",
@@ -475,8 +523,12 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                         break Some(o);
                     }
                     // the crossing is right ahead: a low-order step takes it
-                    step::KinkCut::Before(_) => break None,
+                    step::KinkCut::Before(_) => {
+                        flow.refused_taylor += 1;
+                        break None;
+                    }
                     step::KinkCut::Unresolved => {
+                        flow.refused_taylor += 1;
                         hm = 0.5 * (o.piece.t1() - t);
                         if hm < opts.min_taylor_step {
                             break None;
@@ -489,10 +541,26 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             Some(o) => o,
             None => {
                 // across the surface: the longest low-order step whose added width stays ≤ cross_tol
-                let mut h = h_low * 4.0;
+                // a step of MIN_STEP_ULPS spacings of the doubles at t: about the shortest that
+                // the time grid resolves (the search starts above it: beyond f64 the last
+                // length that met the tolerance may lie below the grid)
+                let floor = step::MIN_STEP_ULPS * step::time_spacing(t);
+                let mut h = (h_low * 4.0).max(4.0 * floor);
+                let mut at_floor: Option<StepOut<N, I>> = None;
                 loop {
                     // (a step shorter than the spacing of doubles at t would not advance)
                     if h < opts.min_low_order_step || t + h <= t {
+                        // none meets the tolerance: the last resorts, each a proved step — a
+                        // refused singular step, or the shortest low-order step the time grid
+                        // allows where what it adds stays below 10⁻³ ε_f64 of the state's
+                        // magnitude (beyond f64 a step of a few ulps of t adds ≈ (h·|f|)²,
+                        // above the tolerance; the f64 engine's own tolerance is larger)
+                        if let Some(o) = spare.take().or(at_floor.take()) {
+                            if trace {
+                                eprintln!("  last resort at t={t:.6e}: width {:.1e}", width(&o.x1));
+                            }
+                            break o;
+                        }
                         return Err(RigorError {
                             reason: CANNOT_CROSS.into(),
                             t,
@@ -513,12 +581,18 @@ fn integrate_tape<I: Enclosure, const N: usize>(
                                 o.rep = Some(p1);
                             }
                         }
-                        if width(&o.x1) - w
+                        let added = width(&o.x1) - w;
+                        if added
                             <= opts.cross_tol.max(1e-3 * w)
                                 + 4.0 * I::epsilon() * step::magnitude(&o.x1)
                         {
                             h_low = h;
                             break o;
+                        }
+                        if h < 4.0 * floor
+                            && added <= 1e-3 * f64::EPSILON * step::magnitude(&o.x1).max(1.0)
+                        {
+                            at_floor = Some(o);
                         }
                     }
                     h *= 0.25;
@@ -526,6 +600,15 @@ fn integrate_tape<I: Enclosure, const N: usize>(
             }
         };
         let t1 = out.piece.t1();
+        if t1 <= t {
+            // every kind of step ends past its start (the Taylor steps by MIN_STEP_ULPS, the
+            // low-order ones by their check above): never loop on a step of length 0
+            return Err(RigorError {
+                reason: format!("a step did not advance the time at T = {t} (an internal error)"),
+                t,
+                width: w,
+            });
+        }
         // the step's a-priori box holds the flow on the whole piece (on a piece cut before a
         // kink too: the continued flow equals the true one there): where F > 0 or V < 0 on it,
         // the piece is cleared without evaluating the piece itself (most of the contact)

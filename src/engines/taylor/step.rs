@@ -29,6 +29,16 @@ use crate::arith::Enclosure;
 use crate::arith::jet::dual::Dual;
 use inari::Interval;
 
+/// The shortest Taylor step in spacings of the doubles at its start ([`time_spacing`]).
+pub const MIN_STEP_ULPS: f64 = 16.0;
+
+/// The spacing of the doubles at t (the distance from |t| to the next double up): the
+/// resolution of the step ends, which are doubles.
+pub fn time_spacing(t: f64) -> f64 {
+    let a = t.abs();
+    a.next_up() - a
+}
+
 /// [0, h].
 fn span<I: Enclosure>(h: f64) -> I {
     I::from_bounds(0.0, h).expect("a step length")
@@ -265,6 +275,11 @@ fn validate<const N: usize, I: Enclosure>(
         .map(|kk| std::array::from_fn(|i| jx[i][kk].clone()))
         .collect();
     let top: [I; N] = std::array::from_fn(|i| jx[i][k].clone());
+    // a step must advance the time: its end t1 = fl(t0 + h) is a double, and a step of a few
+    // spacings of the doubles at t0 or less ends at t0 itself or next to it (at 30 digits the
+    // steps towards a separation at a branch point shrank to h = 0 and were repeated until the
+    // step budget ran out)
+    let h_min = h_min.max(MIN_STEP_ULPS * time_spacing(t0));
     while h >= h_min {
         let (t1, s) = step_span::<I>(t0, h);
         let p0 = taylor_eval(&cbox, &top, &s);
