@@ -1432,14 +1432,18 @@ fn branch_power<R: Real>(w0: &R, s: i8, q: &R) -> R {
 
 /// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), whether
 /// the log runs in this jet (decided by the lead at order 0), and the factors q(k − j) − j of
-/// [`pow_k`] (rows k = 1..K, row k at k(k − 1)/2), kept with the exponent's ends they were
-/// computed for.
+/// [`pow_k`] (rows k = 1..K, row k at k(k − 1)/2), kept with the exponent they were computed
+/// for. A workspace outlives a jet (the engine's serves every step of a tape, whose powers
+/// with a parameter as exponent take that parameter's value; a caller may run another tape
+/// in it), so a table is reused only for the same exponent, compared exactly
+/// ([`Real::identical`]: an MPFR exponent on its own ends — 1.31 and 1.31 + 2⁻⁶⁰ have the same
+/// f64 bounds at 256 bits).
 #[derive(Debug)]
 struct PowScratch<R> {
     u: Vec<R>,
     dw: Vec<R>,
     log_on: Vec<bool>,
-    fac: Vec<((f64, f64), Vec<R>)>,
+    fac: Vec<(Option<R>, Vec<R>)>,
 }
 
 impl<R: Real> PowScratch<R> {
@@ -1448,9 +1452,7 @@ impl<R: Real> PowScratch<R> {
             u: vec![R::zero(); n],
             dw: vec![R::zero(); n],
             log_on: vec![false; nops],
-            fac: (0..nops)
-                .map(|_| ((f64::NAN, f64::NAN), Vec::new()))
-                .collect(),
+            fac: (0..nops).map(|_| (None, Vec::new())).collect(),
         }
     }
 
@@ -1458,14 +1460,15 @@ impl<R: Real> PowScratch<R> {
     fn factors(&mut self, i: usize, q: &R, order: usize) {
         let len = order * (order + 1) / 2;
         let (key, table) = &mut self.fac[i];
-        if *key != (q.lo(), q.hi()) || table.len() < len {
-            *key = (q.lo(), q.hi());
+        if table.len() < len || !key.as_ref().is_some_and(|k| k.identical(q)) {
+            *key = Some(q.clone());
             *table = (1..=order).flat_map(|k| pow_factors(q, k)).collect();
         }
     }
 }
 
-/// Reusable storage for [`Tape::jet`].
+/// Reusable storage for [`Tape::jet`], for any tape and order (a power's factor table is
+/// remade for another exponent, see `PowScratch`).
 #[derive(Debug)]
 pub struct Workspace<R> {
     c: Vec<R>,
@@ -2282,6 +2285,108 @@ mod tests {
         check(&Maxwell::new(
             NdParams::<Interval>::parse(ModelKind::Maxwell, mx).unwrap(),
         ));
+    }
+
+    /// A power's factor table q(k − j) − j ([`pow_k`]) is kept in the workspace with the
+    /// exponent it was made for, compared on the type's own ends ([`Real::identical`]), so a
+    /// workspace reused for another exponent with the same f64 bounds (1.31 and 1.31 + 2⁻⁶⁰ at
+    /// 256 bits) makes a table of its own. One workspace runs the jets of y′ = |x|^q and of
+    /// y′ = |x|^(q−1)x (x′ = 1) to order 8, the exponent switching between the two at each jet:
+    /// as two tapes of constant exponents, and as one tape whose exponent is a parameter
+    /// component (the engine's reuse: one workspace for every step of a tape). Every jet is the
+    /// jet of a fresh workspace bit for bit and contains the 512-bit binomial series
+    /// y_{k+1} = s^(k+1)·C(q, k)·|x₀|^(q−k)/(k + 1) (s^k for |x|^q; s = sign x₀). The bases
+    /// x₀ = ±2⁻¹²⁰⁰·(1 + j/8) lie below f64's range: their f64 bounds (0 and ±2⁻¹⁰⁷⁴) are not
+    /// thin, so the jet of the point takes the power recurrence with the table (over a box the
+    /// box's width would hide 2⁻⁶⁰), and its coefficients are tight to ~2⁻²⁴⁰ relative. With
+    /// the table keyed by the f64 bounds the second exponent's jets missed the series.
+    #[test]
+    fn a_reused_workspace_makes_the_factor_table_of_each_exponent() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        type W = Mpi<512>;
+        let q = [
+            M::parse_decimal("1.31").unwrap(),
+            M::parse_decimal("1.31").unwrap() + M::from_exact_f64(2f64.powi(-60)),
+        ];
+        assert_eq!(
+            (q[0].lo(), q[0].hi()),
+            (q[1].lo(), q[1].hi()),
+            "equal f64 bounds"
+        );
+        assert!(!q[0].identical(&q[1]) && q[0].identical(&q[0].clone()));
+        let qw = [
+            W::parse_decimal("1.31").unwrap(),
+            W::parse_decimal("1.31").unwrap() + W::from_exact_f64(2f64.powi(-60)),
+        ];
+        // y′ = the power of x with exponent `q` (None: the parameter component 2), x′ = 1
+        let range = Mpi::hull(&q[0], &q[1]);
+        let toy = |q: Option<&M>, signed: bool| {
+            let range = q.is_none().then(|| range.clone());
+            Tape::<M, 3>::record_with([None, None, range], |v| {
+                let e = q.map_or_else(|| v[2].clone(), |q| Rec::constant(q.clone()));
+                let p = if signed {
+                    Real::spow(&v[0], &e)
+                } else {
+                    Real::apow(&v[0], &e)
+                };
+                vec![Rec::constant(M::one()), p, Rec::constant(M::zero())]
+            })
+        };
+        // y_0..y_8 at 512 bits
+        let series = |x0: &W, q: &W, signed: bool| -> Vec<W> {
+            let s = x0.sign().unwrap();
+            let a = Real::abs(x0);
+            let (mut binomial, mut a_k) = (W::one(), W::one());
+            let mut y = vec![W::zero()];
+            for k in 0..8_i64 {
+                let signs = if (k + i64::from(signed)) % 2 == 1 {
+                    s
+                } else {
+                    1
+                };
+                let u = binomial.clone() * Real::apow(&a, q) / a_k.clone();
+                y.push(u.mul_int(i64::from(signs)).div_int(k + 1));
+                binomial = binomial * (q.clone() - W::from_int(k)) / W::from_int(k + 1);
+                a_k = a_k * a.clone();
+            }
+            y
+        };
+        let tiny = 2f64.powi(-600);
+        for signed in [true, false] {
+            let consts = [toy(Some(&q[0]), signed), toy(Some(&q[1]), signed)];
+            let param = toy(None, signed);
+            assert_eq!(consts[0].ops(), consts[1].ops(), "one shape");
+            let (mut ws, mut ws_param) = (Workspace::default(), Workspace::default());
+            for (n, (j, s)) in [(0, 1.0), (3, -1.0), (7, 1.0), (1, -1.0)]
+                .iter()
+                .enumerate()
+            {
+                let m = tiny * (1.0 + f64::from(*j) / 8.0) * s;
+                let x0 = M::from_exact_f64(tiny) * M::from_exact_f64(m);
+                let x0w = W::from_exact_f64(tiny) * W::from_exact_f64(m);
+                assert_eq!((x0.lo() == 0.0, x0.hi() == 0.0), (*s > 0.0, *s < 0.0));
+                // the exponent switches at every jet, in both orders
+                for i in [n % 2, 1 - n % 2] {
+                    let x = [x0.clone(), M::zero(), q[i].clone()];
+                    let exact = series(&x0w, &qw[i], signed);
+                    for (t, ws) in [(&consts[i], &mut ws), (&param, &mut ws_param)] {
+                        let a = t.jet(&x, 8, ws).unwrap();
+                        let b = t.jet(&x, 8, &mut Workspace::default()).unwrap();
+                        for k in 0..=8 {
+                            let (a, b, e) = (&a[1][k], &b[1][k], &exact[k]);
+                            let what =
+                                format!("q{i}, x₀ = 2⁻⁶⁰⁰·{m:e}, signed {signed}, order {k}");
+                            assert!(
+                                a.inf() <= e.inf() && e.sup() <= a.sup(),
+                                "{what}: {a} vs {e}"
+                            );
+                            assert!(a.inf() == b.inf() && a.sup() == b.sup(), "{what}: reused");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
