@@ -2287,6 +2287,163 @@ mod tests {
         ));
     }
 
+    /// Asserts that the jets of `tape` to `order` over each box (a point where lo = hi) contain
+    /// the 256-bit jets of `reference` (compared exactly) at the box's two end corners and at
+    /// `samples` points drawn in it.
+    fn jets_contain_the_reference<const N: usize>(
+        tape: &Tape<Interval, N>,
+        reference: &Tape<crate::arith::mpfr::Mpi<256>, N>,
+        boxes: &[[(f64, f64); N]],
+        order: usize,
+        samples: usize,
+        what: &str,
+    ) {
+        use crate::arith::mpfr::Mpi;
+        let mut r = crate::arith::interval::xorshift(0x243f_6a88_85a3_08d3);
+        let mut next = move || (r() >> 11) as f64 / (1u64 << 53) as f64;
+        for bx in boxes {
+            let y = bx.map(|(a, b)| Interval::try_from((a, b)).unwrap());
+            let a = tape.jet(&y, order, &mut Workspace::default()).unwrap();
+            let thin = bx.iter().all(|(lo, hi)| lo == hi);
+            for case in 0..if thin { 1 } else { 2 + samples } {
+                let x: [f64; N] = std::array::from_fn(|i| {
+                    let (lo, hi) = bx[i];
+                    match case {
+                        0 => lo,
+                        1 => hi,
+                        _ => lo + (hi - lo) * next(),
+                    }
+                });
+                let e = reference
+                    .jet(
+                        &x.map(Mpi::<256>::from_exact_f64),
+                        order,
+                        &mut Workspace::default(),
+                    )
+                    .unwrap();
+                for i in 0..N {
+                    for k in 0..=order {
+                        assert!(
+                            e[i][k].subset(&Mpi::<256>::from_interval(a[i][k])),
+                            "{what}: box {bx:?}, x = {x:?}, component {i}, order {k}: {:?} not \
+                             in {:?}",
+                            e[i][k].to_interval(),
+                            a[i][k]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// The points of [`sign_pattern_points`] as thin boxes, and boxes around each of
+    /// relative width `rel`.
+    fn points_and_boxes<const N: usize>(seed: u64, rel: f64) -> Vec<[(f64, f64); N]> {
+        let points = sign_pattern_points::<N>(seed, 2 << N);
+        let thin = points.iter().map(|x| x.map(|v| (v, v)));
+        let wide = points.iter().map(|x| {
+            x.map(|v| {
+                let d = v.abs() * rel;
+                (v - d, v + d)
+            })
+        });
+        thin.chain(wide).collect()
+    }
+
+    /// One fused form that sums a product and two sign copies of it merges one pair, and each
+    /// term at most once ([`lin_merges`]): z′ = c₁·P + c₂·P′ + c₃·P″ with P = |z|^(q−1)z·x,
+    /// P′ = |z|^q·x = s_z·P and P″ = |z|^q·|x| = s_z·s_x·P (the powers by one spow_apow,
+    /// recorded in that order), x′ = −z; the three terms summed in each of the six orders, and
+    /// P twice (P, P′, P, P″: two pairs, each P in one). The tapes fused both ways contain the
+    /// 256-bit jets of the sums at points of every sign pattern and over boxes around them.
+    /// Pairing a term of P twice dropped the second copy's term from the jet.
+    #[test]
+    fn a_product_and_two_sign_copies_merge_one_pair() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        fn field<R: Real>(v: &[Rec<R>; 2], order: &[usize]) -> Vec<Rec<R>> {
+            let q = R::parse_decimal("1.31").unwrap();
+            let c = ["1.43", "-1.42", "0.37", "-0.55"].map(|c| R::parse_decimal(c).unwrap());
+            let (s, a) = Scalar::<R>::spow_apow(&v[0], &q);
+            let p = [
+                s * v[1].clone(),
+                a.clone() * v[1].clone(),
+                a * Real::abs(&v[1]),
+            ];
+            let rate = order
+                .iter()
+                .zip(&c)
+                .map(|(&j, c)| p[j].scale(c))
+                .reduce(|a, b| a + b)
+                .unwrap();
+            vec![rate, -v[0].clone()]
+        }
+        let boxes = points_and_boxes::<2>(41, 0.02);
+        let orders: [&[usize]; 7] = [
+            &[0, 1, 2],
+            &[0, 2, 1],
+            &[1, 0, 2],
+            &[1, 2, 0],
+            &[2, 0, 1],
+            &[2, 1, 0],
+            &[0, 1, 0, 2],
+        ];
+        for order in orders {
+            let tape = Tape::<Interval, 2>::record(|v| field(v, order));
+            let reference = Tape::<M, 2>::record(|v| field(v, order)).without_shortcuts(true, true);
+            for rounding in [Rounding::Each, Rounding::Once] {
+                let t = tape.fused(rounding);
+                let what = format!("{order:?}, {rounding:?}");
+                jets_contain_the_reference(&t, &reference, &boxes, 8, 6, &what);
+                // the shape: one form of all the terms, two copies, one pair per copy of P
+                assert_eq!(t.lins.len(), 1, "{what}: one form");
+                assert_eq!(t.lins[0].terms.len(), order.len(), "{what}: its terms");
+                assert_eq!(t.shortcuts(), (0, 2), "{what}: P′ and P″ copies of P");
+                assert_eq!(t.merges(), order.len() - 2, "{what}: merged pairs");
+            }
+        }
+    }
+
+    /// A product is a sign copy of another only where their other factors are one x (x or
+    /// |x|; [`sign_copies`]): with z′ = c₁·|z|^(q−1)z·A + c₂·|z|^q·B, x′ = −z, y′ = z − y/2,
+    /// the pairs (A, B) = (x, x), (x, |x|), (|x|, x), (|x|, |x|) are copies (and merge in the
+    /// fused form), the same with y for B are not. Every tape, recorded and fused, contains
+    /// the 256-bit jets of the sums at points of every sign pattern and over boxes around
+    /// them. Taken as a copy, |z|^q·y had the series of ±|z|^(q−1)z·x.
+    #[test]
+    fn sign_copies_need_one_other_factor() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        fn field<R: Real>(v: &[Rec<R>; 3], (abs_a, abs_b): (bool, bool), b: usize) -> Vec<Rec<R>> {
+            let q = R::parse_decimal("1.31").unwrap();
+            let (c1, c2) = (
+                R::parse_decimal("1.43").unwrap(),
+                R::parse_decimal("-1.42").unwrap(),
+            );
+            let factor = |n: usize, abs: bool| {
+                if abs { Real::abs(&v[n]) } else { v[n].clone() }
+            };
+            let (s, a) = Scalar::<R>::spow_apow(&v[0], &q);
+            let rate = (s * factor(1, abs_a)).scale(&c1) + (a * factor(b, abs_b)).scale(&c2);
+            let half = R::parse_decimal("0.5").unwrap();
+            vec![rate, -v[0].clone(), v[0].clone() - v[2].scale(&half)]
+        }
+        let boxes = points_and_boxes::<3>(43, 0.02);
+        for abs in [(false, false), (false, true), (true, false), (true, true)] {
+            for (b, copies) in [(1, 1), (2, 0)] {
+                let what = format!("|·| {abs:?}, other factor component {b}");
+                let tape = Tape::<Interval, 3>::record(|v| field(v, abs, b));
+                let reference =
+                    Tape::<M, 3>::record(|v| field(v, abs, b)).without_shortcuts(true, true);
+                jets_contain_the_reference(&tape, &reference, &boxes, 8, 4, &what);
+                let fused = tape.fused(Rounding::Each);
+                jets_contain_the_reference(&fused, &reference, &boxes, 8, 4, &what);
+                assert_eq!(tape.shortcuts(), (0, copies), "{what}: copies");
+                assert_eq!(fused.merges(), copies, "{what}: merged");
+            }
+        }
+    }
+
     /// A power's factor table q(k − j) − j ([`pow_k`]) is kept in the workspace with the
     /// exponent it was made for, compared on the type's own ends ([`Real::identical`]), so a
     /// workspace reused for another exponent with the same f64 bounds (1.31 and 1.31 + 2⁻⁶⁰ at
