@@ -135,6 +135,14 @@ pub trait Real:
     fn encloses(&self, o: &Self) -> bool {
         self.lo() <= o.lo() && o.hi() <= self.hi()
     }
+    /// True when `o` is the same number of the type as `self`, decided exactly: the same ends
+    /// of an interval (an MPFR interval's own ends: two whose f64 bounds coincide may differ),
+    /// the same value and derivative parts of a dual. What a cache keyed by a number compares
+    /// (the factor tables of the tape's power recurrences). The default: each encloses the
+    /// other ([`Real::encloses`]).
+    fn identical(&self, o: &Self) -> bool {
+        self.encloses(o) && o.encloses(self)
+    }
     /// True when the value is a finite number (or a bounded, non-empty interval).
     fn is_finite(&self) -> bool {
         self.lo().is_finite() && self.hi().is_finite()

@@ -570,34 +570,100 @@ mod tests {
 
     /// The remembered logarithms and powers are `ln`'s and exp(q·ln x)'s, bit for bit, over a
     /// sequence that repeats operands within and beyond the memo's slots (hits, evictions, thin
-    /// and wide intervals, the same lower end with other upper ends, several exponents).
+    /// and wide intervals, several exponents), and over operands that share one end (the same
+    /// lower end with other upper ends and the reverse, for bases and for exponents), each
+    /// right after the other: a key without one of the four ends returns another operand's
+    /// value.
     #[test]
     fn remembered_logarithms_are_the_logarithms() {
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
         let mut next = crate::arith::interval::xorshift(0x6a09_e667_f3bc_c908_u64);
         let pool: Vec<Interval> = (0..30)
             .map(|i| {
                 let a = 0.1 + (next() >> 11) as f64 / (1u64 << 53) as f64 * 3.0;
                 let w = [0.0, 1e-12, 0.5][i % 3];
-                Interval::try_from((a, a + w)).unwrap()
+                iv(a, a + w)
             })
-            .chain([
-                Interval::try_from((2.0, 2.0)).unwrap(),
-                Interval::try_from((2.0, 2.5)).unwrap(),
-            ])
+            .chain([iv(2.0, 2.0), iv(2.0, 2.5), iv(1.5, 2.5), iv(2.5, 2.5)])
             .collect();
+        // exponents: three of the pool, then one lower end with two upper ends, one upper end
+        // with two lower ends
+        let exponents = [
+            pool[0],
+            pool[1],
+            pool[2],
+            iv(1.27, 1.27),
+            iv(1.27, 1.31),
+            iv(1.2, 1.31),
+        ];
+        let same = |a: Interval, b: Interval| {
+            a.inf().to_bits() == b.inf().to_bits() && a.sup().to_bits() == b.sup().to_bits()
+        };
+        let check = |x: Interval, q: Interval| {
+            let (a, b) = (ln_memo(x), ln(x));
+            assert!(same(a, b), "{x:?}: {a:?} vs {b:?}");
+            let (c, d) = (pow_memo(x, q), exp(q.mul_constant(&ln(x))));
+            assert!(same(c, d), "{x:?}^{q:?}: {c:?} vs {d:?}");
+        };
         for _ in 0..2000 {
             let x = pool[(next() % pool.len() as u64) as usize];
-            let (a, b) = (ln_memo(x), ln(x));
-            let q = pool[(next() % 3) as usize];
-            let (c, d) = (pow_memo(x, q), exp(q.mul_constant(&ln(x))));
-            assert!(
-                c.inf().to_bits() == d.inf().to_bits() && c.sup().to_bits() == d.sup().to_bits(),
-                "{x:?}^{q:?}: {c:?} vs {d:?}"
-            );
-            assert!(
-                a.inf().to_bits() == b.inf().to_bits() && a.sup().to_bits() == b.sup().to_bits(),
-                "{x:?}: {a:?} vs {b:?}"
-            );
+            let q = exponents[(next() % exponents.len() as u64) as usize];
+            check(x, q);
+        }
+        // operands sharing an end, one right after the other
+        for x in &pool {
+            for q in &exponents[3..] {
+                check(*x, *q);
+            }
+        }
+        for q in &exponents {
+            for x in &pool[30..] {
+                check(*x, *q);
+            }
+        }
+    }
+
+    /// x^q for q < 0 encloses the exact power (256 bits): at 2000 thin bases in [2⁻⁴⁰, 2⁴⁰]
+    /// with q = −1 (the quotient 1/x, one outward rounding) and with q = −0.31, −1.27, −2.14,
+    /// −5.73 (1/x^(−q), the quotient rounded outward), at 2000 thin bases in [2, 10⁴] with x^q
+    /// in [2⁻¹⁰²⁴, 2⁻¹⁰²²] (subnormal quotients), and over exponent ranges with −1 at one end
+    /// ([−1, −0.5], [−2, −1], [−1, −1 + 2⁻⁴⁰]: not the quotient) at their corners and interior
+    /// points, for thin and wide bases on both sides of 1.
+    #[test]
+    fn negative_powers_enclose_the_exact_powers() {
+        let mut next = crate::arith::interval::xorshift(0xbb67_ae85_84ca_a73b_u64);
+        for _ in 0..2000 {
+            let u = (next() >> 11) as f64 / (1u64 << 53) as f64;
+            let x = (u * 80.0 - 40.0).exp2();
+            for q in [-1.0, -0.31, -1.27, -2.14, -5.73] {
+                let p = pow(pt(x), pt(q)).unwrap();
+                let exact = Float::with_val(PREC, x).pow(Float::with_val(PREC, q));
+                assert!(contains_exact(p, &exact), "{x}^{q} = {exact} ∉ {p:?}");
+            }
+        }
+        // x^q just below the normal range (x^(−q) just below f64::MAX): a subnormal quotient,
+        // which `div_as_inari` leaves to inari's division
+        for _ in 0..2000 {
+            let u = (next() >> 11) as f64 / (1u64 << 53) as f64;
+            let x = 2.0 + u * 1e4;
+            let e = 1022.0 + 2.0 * (next() >> 11) as f64 / (1u64 << 53) as f64;
+            let q = -e * std::f64::consts::LN_2 / x.ln();
+            let p = pow(pt(x), pt(q)).unwrap();
+            let exact = Float::with_val(PREC, x).pow(Float::with_val(PREC, q));
+            assert!(contains_exact(p, &exact), "{x}^{q} = {exact} ∉ {p:?}");
+        }
+        let near = -1.0 + 2f64.powi(-40);
+        for (c, d) in [(-1.0, -0.5), (-2.0, -1.0), (-1.0, near)] {
+            let q = Interval::try_from((c, d)).unwrap();
+            for (a, b) in [(0.3, 0.7), (2.0, 2.0), (1.5, 2.5), (1e-9, 1e-6), (0.3, 0.3)] {
+                let p = pow(Interval::try_from((a, b)).unwrap(), q).unwrap();
+                for xs in [a, 0.5 * (a + b), b] {
+                    for qs in [c, 0.5 * (c + d), d] {
+                        let exact = Float::with_val(PREC, xs).pow(Float::with_val(PREC, qs));
+                        assert!(contains_exact(p, &exact), "{xs}^{qs} = {exact} ∉ {p:?}");
+                    }
+                }
+            }
         }
     }
 

@@ -302,6 +302,10 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     fn encloses(&self, _: &Self) -> bool {
         false
     }
+    /// The same value and derivative parts, each decided by `R`.
+    fn identical(&self, o: &Self) -> bool {
+        self.v.identical(&o.v) && self.d.iter().zip(&o.d).all(|(a, b)| a.identical(b))
+    }
     fn is_finite(&self) -> bool {
         self.v.is_finite() && self.d.iter().all(|c| c.is_finite())
     }

@@ -1432,14 +1432,18 @@ fn branch_power<R: Real>(w0: &R, s: i8, q: &R) -> R {
 
 /// Per-node storage of the power recurrences: ũ_k, k·L_k (at the log's lead node), whether
 /// the log runs in this jet (decided by the lead at order 0), and the factors q(k − j) − j of
-/// [`pow_k`] (rows k = 1..K, row k at k(k − 1)/2), kept with the exponent's ends they were
-/// computed for.
+/// [`pow_k`] (rows k = 1..K, row k at k(k − 1)/2), kept with the exponent they were computed
+/// for. A workspace outlives a jet (the engine's serves every step of a tape, whose powers
+/// with a parameter as exponent take that parameter's value; a caller may run another tape
+/// in it), so a table is reused only for the same exponent, compared exactly
+/// ([`Real::identical`]: an MPFR exponent on its own ends — 1.31 and 1.31 + 2⁻⁶⁰ have the same
+/// f64 bounds at 256 bits).
 #[derive(Debug)]
 struct PowScratch<R> {
     u: Vec<R>,
     dw: Vec<R>,
     log_on: Vec<bool>,
-    fac: Vec<((f64, f64), Vec<R>)>,
+    fac: Vec<(Option<R>, Vec<R>)>,
 }
 
 impl<R: Real> PowScratch<R> {
@@ -1448,9 +1452,7 @@ impl<R: Real> PowScratch<R> {
             u: vec![R::zero(); n],
             dw: vec![R::zero(); n],
             log_on: vec![false; nops],
-            fac: (0..nops)
-                .map(|_| ((f64::NAN, f64::NAN), Vec::new()))
-                .collect(),
+            fac: (0..nops).map(|_| (None, Vec::new())).collect(),
         }
     }
 
@@ -1458,14 +1460,15 @@ impl<R: Real> PowScratch<R> {
     fn factors(&mut self, i: usize, q: &R, order: usize) {
         let len = order * (order + 1) / 2;
         let (key, table) = &mut self.fac[i];
-        if *key != (q.lo(), q.hi()) || table.len() < len {
-            *key = (q.lo(), q.hi());
+        if table.len() < len || !key.as_ref().is_some_and(|k| k.identical(q)) {
+            *key = Some(q.clone());
             *table = (1..=order).flat_map(|k| pow_factors(q, k)).collect();
         }
     }
 }
 
-/// Reusable storage for [`Tape::jet`].
+/// Reusable storage for [`Tape::jet`], for any tape and order (a power's factor table is
+/// remade for another exponent, see `PowScratch`).
 #[derive(Debug)]
 pub struct Workspace<R> {
     c: Vec<R>,
@@ -2282,6 +2285,265 @@ mod tests {
         check(&Maxwell::new(
             NdParams::<Interval>::parse(ModelKind::Maxwell, mx).unwrap(),
         ));
+    }
+
+    /// Asserts that the jets of `tape` to `order` over each box (a point where lo = hi) contain
+    /// the 256-bit jets of `reference` (compared exactly) at the box's two end corners and at
+    /// `samples` points drawn in it.
+    fn jets_contain_the_reference<const N: usize>(
+        tape: &Tape<Interval, N>,
+        reference: &Tape<crate::arith::mpfr::Mpi<256>, N>,
+        boxes: &[[(f64, f64); N]],
+        order: usize,
+        samples: usize,
+        what: &str,
+    ) {
+        use crate::arith::mpfr::Mpi;
+        let mut r = crate::arith::interval::xorshift(0x243f_6a88_85a3_08d3);
+        let mut next = move || (r() >> 11) as f64 / (1u64 << 53) as f64;
+        for bx in boxes {
+            let y = bx.map(|(a, b)| Interval::try_from((a, b)).unwrap());
+            let a = tape.jet(&y, order, &mut Workspace::default()).unwrap();
+            let thin = bx.iter().all(|(lo, hi)| lo == hi);
+            for case in 0..if thin { 1 } else { 2 + samples } {
+                let x: [f64; N] = std::array::from_fn(|i| {
+                    let (lo, hi) = bx[i];
+                    match case {
+                        0 => lo,
+                        1 => hi,
+                        _ => lo + (hi - lo) * next(),
+                    }
+                });
+                let e = reference
+                    .jet(
+                        &x.map(Mpi::<256>::from_exact_f64),
+                        order,
+                        &mut Workspace::default(),
+                    )
+                    .unwrap();
+                for i in 0..N {
+                    for k in 0..=order {
+                        assert!(
+                            e[i][k].subset(&Mpi::<256>::from_interval(a[i][k])),
+                            "{what}: box {bx:?}, x = {x:?}, component {i}, order {k}: {:?} not \
+                             in {:?}",
+                            e[i][k].to_interval(),
+                            a[i][k]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// The points of [`sign_pattern_points`] as thin boxes, and boxes around each of
+    /// relative width `rel`.
+    fn points_and_boxes<const N: usize>(seed: u64, rel: f64) -> Vec<[(f64, f64); N]> {
+        let points = sign_pattern_points::<N>(seed, 2 << N);
+        let thin = points.iter().map(|x| x.map(|v| (v, v)));
+        let wide = points.iter().map(|x| {
+            x.map(|v| {
+                let d = v.abs() * rel;
+                (v - d, v + d)
+            })
+        });
+        thin.chain(wide).collect()
+    }
+
+    /// One fused form that sums a product and two sign copies of it merges one pair, and each
+    /// term at most once ([`lin_merges`]): z′ = c₁·P + c₂·P′ + c₃·P″ with P = |z|^(q−1)z·x,
+    /// P′ = |z|^q·x = s_z·P and P″ = |z|^q·|x| = s_z·s_x·P (the powers by one spow_apow,
+    /// recorded in that order), x′ = −z; the three terms summed in each of the six orders, and
+    /// P twice (P, P′, P, P″: two pairs, each P in one). The tapes fused both ways contain the
+    /// 256-bit jets of the sums at points of every sign pattern and over boxes around them.
+    /// Pairing a term of P twice dropped the second copy's term from the jet.
+    #[test]
+    fn a_product_and_two_sign_copies_merge_one_pair() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        fn field<R: Real>(v: &[Rec<R>; 2], order: &[usize]) -> Vec<Rec<R>> {
+            let q = R::parse_decimal("1.31").unwrap();
+            let c = ["1.43", "-1.42", "0.37", "-0.55"].map(|c| R::parse_decimal(c).unwrap());
+            let (s, a) = Scalar::<R>::spow_apow(&v[0], &q);
+            let p = [
+                s * v[1].clone(),
+                a.clone() * v[1].clone(),
+                a * Real::abs(&v[1]),
+            ];
+            let rate = order
+                .iter()
+                .zip(&c)
+                .map(|(&j, c)| p[j].scale(c))
+                .reduce(|a, b| a + b)
+                .unwrap();
+            vec![rate, -v[0].clone()]
+        }
+        let boxes = points_and_boxes::<2>(41, 0.02);
+        let orders: [&[usize]; 7] = [
+            &[0, 1, 2],
+            &[0, 2, 1],
+            &[1, 0, 2],
+            &[1, 2, 0],
+            &[2, 0, 1],
+            &[2, 1, 0],
+            &[0, 1, 0, 2],
+        ];
+        for order in orders {
+            let tape = Tape::<Interval, 2>::record(|v| field(v, order));
+            let reference = Tape::<M, 2>::record(|v| field(v, order)).without_shortcuts(true, true);
+            for rounding in [Rounding::Each, Rounding::Once] {
+                let t = tape.fused(rounding);
+                let what = format!("{order:?}, {rounding:?}");
+                jets_contain_the_reference(&t, &reference, &boxes, 8, 6, &what);
+                // the shape: one form of all the terms, two copies, one pair per copy of P
+                assert_eq!(t.lins.len(), 1, "{what}: one form");
+                assert_eq!(t.lins[0].terms.len(), order.len(), "{what}: its terms");
+                assert_eq!(t.shortcuts(), (0, 2), "{what}: P′ and P″ copies of P");
+                assert_eq!(t.merges(), order.len() - 2, "{what}: merged pairs");
+            }
+        }
+    }
+
+    /// A product is a sign copy of another only where their other factors are one x (x or
+    /// |x|; [`sign_copies`]): with z′ = c₁·|z|^(q−1)z·A + c₂·|z|^q·B, x′ = −z, y′ = z − y/2,
+    /// the pairs (A, B) = (x, x), (x, |x|), (|x|, x), (|x|, |x|) are copies (and merge in the
+    /// fused form), the same with y for B are not. Every tape, recorded and fused, contains
+    /// the 256-bit jets of the sums at points of every sign pattern and over boxes around
+    /// them. Taken as a copy, |z|^q·y had the series of ±|z|^(q−1)z·x.
+    #[test]
+    fn sign_copies_need_one_other_factor() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        fn field<R: Real>(v: &[Rec<R>; 3], (abs_a, abs_b): (bool, bool), b: usize) -> Vec<Rec<R>> {
+            let q = R::parse_decimal("1.31").unwrap();
+            let (c1, c2) = (
+                R::parse_decimal("1.43").unwrap(),
+                R::parse_decimal("-1.42").unwrap(),
+            );
+            let factor = |n: usize, abs: bool| {
+                if abs { Real::abs(&v[n]) } else { v[n].clone() }
+            };
+            let (s, a) = Scalar::<R>::spow_apow(&v[0], &q);
+            let rate = (s * factor(1, abs_a)).scale(&c1) + (a * factor(b, abs_b)).scale(&c2);
+            let half = R::parse_decimal("0.5").unwrap();
+            vec![rate, -v[0].clone(), v[0].clone() - v[2].scale(&half)]
+        }
+        let boxes = points_and_boxes::<3>(43, 0.02);
+        for abs in [(false, false), (false, true), (true, false), (true, true)] {
+            for (b, copies) in [(1, 1), (2, 0)] {
+                let what = format!("|·| {abs:?}, other factor component {b}");
+                let tape = Tape::<Interval, 3>::record(|v| field(v, abs, b));
+                let reference =
+                    Tape::<M, 3>::record(|v| field(v, abs, b)).without_shortcuts(true, true);
+                jets_contain_the_reference(&tape, &reference, &boxes, 8, 4, &what);
+                let fused = tape.fused(Rounding::Each);
+                jets_contain_the_reference(&fused, &reference, &boxes, 8, 4, &what);
+                assert_eq!(tape.shortcuts(), (0, copies), "{what}: copies");
+                assert_eq!(fused.merges(), copies, "{what}: merged");
+            }
+        }
+    }
+
+    /// A power's factor table q(k − j) − j ([`pow_k`]) is kept in the workspace with the
+    /// exponent it was made for, compared on the type's own ends ([`Real::identical`]), so a
+    /// workspace reused for another exponent with the same f64 bounds (1.31 and 1.31 + 2⁻⁶⁰ at
+    /// 256 bits) makes a table of its own. One workspace runs the jets of y′ = |x|^q and of
+    /// y′ = |x|^(q−1)x (x′ = 1) to order 8, the exponent switching between the two at each jet:
+    /// as two tapes of constant exponents, and as one tape whose exponent is a parameter
+    /// component (the engine's reuse: one workspace for every step of a tape). Every jet is the
+    /// jet of a fresh workspace bit for bit and contains the 512-bit binomial series
+    /// y_{k+1} = s^(k+1)·C(q, k)·|x₀|^(q−k)/(k + 1) (s^k for |x|^q; s = sign x₀). The bases
+    /// x₀ = ±2⁻¹²⁰⁰·(1 + j/8) lie below f64's range: their f64 bounds (0 and ±2⁻¹⁰⁷⁴) are not
+    /// thin, so the jet of the point takes the power recurrence with the table (over a box the
+    /// box's width would hide 2⁻⁶⁰), and its coefficients are tight to ~2⁻²⁴⁰ relative. With
+    /// the table keyed by the f64 bounds the second exponent's jets missed the series.
+    #[test]
+    fn a_reused_workspace_makes_the_factor_table_of_each_exponent() {
+        use crate::arith::mpfr::Mpi;
+        type M = Mpi<256>;
+        type W = Mpi<512>;
+        let q = [
+            M::parse_decimal("1.31").unwrap(),
+            M::parse_decimal("1.31").unwrap() + M::from_exact_f64(2f64.powi(-60)),
+        ];
+        assert_eq!(
+            (q[0].lo(), q[0].hi()),
+            (q[1].lo(), q[1].hi()),
+            "equal f64 bounds"
+        );
+        assert!(!q[0].identical(&q[1]) && q[0].identical(&q[0].clone()));
+        let qw = [
+            W::parse_decimal("1.31").unwrap(),
+            W::parse_decimal("1.31").unwrap() + W::from_exact_f64(2f64.powi(-60)),
+        ];
+        // y′ = the power of x with exponent `q` (None: the parameter component 2), x′ = 1
+        let range = Mpi::hull(&q[0], &q[1]);
+        let toy = |q: Option<&M>, signed: bool| {
+            let range = q.is_none().then(|| range.clone());
+            Tape::<M, 3>::record_with([None, None, range], |v| {
+                let e = q.map_or_else(|| v[2].clone(), |q| Rec::constant(q.clone()));
+                let p = if signed {
+                    Real::spow(&v[0], &e)
+                } else {
+                    Real::apow(&v[0], &e)
+                };
+                vec![Rec::constant(M::one()), p, Rec::constant(M::zero())]
+            })
+        };
+        // y_0..y_8 at 512 bits
+        let series = |x0: &W, q: &W, signed: bool| -> Vec<W> {
+            let s = x0.sign().unwrap();
+            let a = Real::abs(x0);
+            let (mut binomial, mut a_k) = (W::one(), W::one());
+            let mut y = vec![W::zero()];
+            for k in 0..8_i64 {
+                let signs = if (k + i64::from(signed)) % 2 == 1 {
+                    s
+                } else {
+                    1
+                };
+                let u = binomial.clone() * Real::apow(&a, q) / a_k.clone();
+                y.push(u.mul_int(i64::from(signs)).div_int(k + 1));
+                binomial = binomial * (q.clone() - W::from_int(k)) / W::from_int(k + 1);
+                a_k = a_k * a.clone();
+            }
+            y
+        };
+        let tiny = 2f64.powi(-600);
+        for signed in [true, false] {
+            let consts = [toy(Some(&q[0]), signed), toy(Some(&q[1]), signed)];
+            let param = toy(None, signed);
+            assert_eq!(consts[0].ops(), consts[1].ops(), "one shape");
+            let (mut ws, mut ws_param) = (Workspace::default(), Workspace::default());
+            for (n, (j, s)) in [(0, 1.0), (3, -1.0), (7, 1.0), (1, -1.0)]
+                .iter()
+                .enumerate()
+            {
+                let m = tiny * (1.0 + f64::from(*j) / 8.0) * s;
+                let x0 = M::from_exact_f64(tiny) * M::from_exact_f64(m);
+                let x0w = W::from_exact_f64(tiny) * W::from_exact_f64(m);
+                assert_eq!((x0.lo() == 0.0, x0.hi() == 0.0), (*s > 0.0, *s < 0.0));
+                // the exponent switches at every jet, in both orders
+                for i in [n % 2, 1 - n % 2] {
+                    let x = [x0.clone(), M::zero(), q[i].clone()];
+                    let exact = series(&x0w, &qw[i], signed);
+                    for (t, ws) in [(&consts[i], &mut ws), (&param, &mut ws_param)] {
+                        let a = t.jet(&x, 8, ws).unwrap();
+                        let b = t.jet(&x, 8, &mut Workspace::default()).unwrap();
+                        for k in 0..=8 {
+                            let (a, b, e) = (&a[1][k], &b[1][k], &exact[k]);
+                            let what =
+                                format!("q{i}, x₀ = 2⁻⁶⁰⁰·{m:e}, signed {signed}, order {k}");
+                            assert!(
+                                a.inf() <= e.inf() && e.sup() <= a.sup(),
+                                "{what}: {a} vs {e}"
+                            );
+                            assert!(a.inf() == b.inf() && a.sup() == b.sup(), "{what}: reused");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
