@@ -512,3 +512,28 @@ mod tests {
         assert!(l.starts_with("3.3333333333") && h.starts_with("3.3333333333"));
     }
 }
+
+#[cfg(test)]
+mod floor_tests {
+    use super::*;
+
+    /// `--digits` never proves less than the f64-interval engine: a case the precise run
+    /// cannot prove (SHC with n = p = 1 at 60 digits: only kinks, which the MPFR engine does
+    /// not cross within 10⁻⁶⁴, "cannot cross a switching surface") still gets the f64
+    /// enclosure, with the precise run's error beside it; that enclosure holds the one proved
+    /// at 30 digits (where the low-order last resorts do cross).
+    #[test]
+    fn digits_fall_back_to_the_f64_proof() {
+        let p = ParamText::Nd("1,0,0.5,1,1,1".into());
+        let opts = TaylorOptions::default();
+        assert!(rigorous_impact_digits(ModelKind::Shc, &p, 60, &opts).is_err());
+        let (enc, why) =
+            rigorous_impact_digits_or_f64(ModelKind::Shc, &p, 60, &opts).expect("f64 proves");
+        assert_eq!(enc.bits, 53);
+        assert!(why.is_some_and(|e| e.reason.starts_with("cannot cross")));
+        let (d30, why) = rigorous_impact_digits_or_f64(ModelKind::Shc, &p, 30, &opts).unwrap();
+        assert!(d30.bits == 128 && why.is_none());
+        assert!(enc.e[0] <= d30.e[0] && d30.e[1] <= enc.e[1]);
+        assert!(enc.ts[0] <= d30.ts[0] && d30.ts[1] <= enc.ts[1]);
+    }
+}
