@@ -478,3 +478,132 @@ fn twin_powers_equal_the_powers() {
     let a = Real::apow(&x, &q);
     assert!(!Real::twin_pow(&x, &q, &a, true).is_bounded());
 }
+
+/// An f64 interval [a, b].
+fn ivf(a: f64, b: f64) -> Interval {
+    Interval::try_from((a, b)).unwrap()
+}
+
+/// The toy basis of the validation tests: generators 1 and 1.5, cut-off M = 3, on [0, 1/4].
+fn toy_ctx() -> Arc<Ctx<Interval>> {
+    Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 3.0).unwrap(), 0.25).unwrap()
+}
+
+/// The key of u^(k₀ + 1.5k₁).
+fn key(k0: u8, k1: u8) -> puiseux::Key {
+    let mut k = [0; puiseux::MAX_GENS];
+    (k[0], k[1]) = (k0, k1);
+    k
+}
+
+/// [`validate`] of the one-component operator `image` from `y0` with a single candidate
+/// S = y0 inflated, no plain iterations before and no tightening images after: the answer is
+/// the inclusion T(S) ⊆ S alone.
+fn one_candidate(
+    y0: Gts<Interval>,
+    image: impl Fn(&Gts<Interval>) -> Gts<Interval>,
+) -> Option<Vec<Gts<Interval>>> {
+    let opts = SingularOptions {
+        tries: 1,
+        iterations: 0,
+        truncated_iterations: false,
+        tighten: 0,
+        ..SingularOptions::default()
+    };
+    validate(
+        vec![y0],
+        usize::MAX,
+        &opts,
+        3.0,
+        (false, 0),
+        false,
+        |y, _| Some(vec![image(&y[0])]),
+    )
+}
+
+/// The validation refuses a candidate whose image leaves it by one clause of the inclusion
+/// alone — a wider remainder; a term the candidate lacks; a term the image lacks where the
+/// candidate's coefficient excludes 0; an image on another domain — and accepts the identity
+/// and the same images where the clause holds (the term's coefficient 0, or 0 in the
+/// candidate's coefficient).
+#[test]
+fn the_validation_refuses_an_image_outside_the_candidate_by_any_one_clause() {
+    let ctx = toy_ctx();
+    let rem = ivf(-1e-3, 1e-3);
+    let one = (key(0, 0), ivf(1.0, 1.0));
+    let y0 = Gts::from_parts(&ctx, &[one, (key(1, 0), ivf(0.5, 0.5))], rem);
+    let with = |s: &Gts<Interval>, extra: (puiseux::Key, Interval)| {
+        let mut t = s.terms();
+        t.push(extra);
+        Gts::from_parts(&ctx, &t, s.remainder())
+    };
+    let without = |s: &Gts<Interval>, k: puiseux::Key| {
+        let t: Vec<_> = s.terms().into_iter().filter(|e| e.0 != k).collect();
+        Gts::from_parts(&ctx, &t, s.remainder())
+    };
+    assert!(one_candidate(y0.clone(), |s| s.clone()).is_some());
+    // the remainder
+    let wider = |s: &Gts<Interval>| Gts::from_parts(&ctx, &s.terms(), s.remainder() + rem);
+    assert!(one_candidate(y0.clone(), wider).is_none());
+    // a term S lacks (inside only as 0)
+    assert!(one_candidate(y0.clone(), |s| with(s, (key(0, 1), ivf(0.25, 0.25)))).is_none());
+    assert!(one_candidate(y0.clone(), |s| with(s, (key(0, 1), ivf(0.0, 0.0)))).is_some());
+    // a term T(S) lacks: inside only where S's coefficient holds 0
+    let lacks = |c: Interval| {
+        let y = Gts::from_parts(&ctx, &[one, (key(0, 1), c)], rem);
+        one_candidate(y, |s| without(s, key(0, 1)))
+    };
+    assert!(lacks(ivf(0.25, 0.25)).is_none());
+    assert!(lacks(ivf(-0.25, -0.125)).is_none());
+    assert!(lacks(ivf(-0.25, 0.25)).is_some());
+    // another domain: the same keys and coefficients are other functions there
+    let shorter = Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 3.0).unwrap(), 0.125).unwrap();
+    let moved = |s: &Gts<Interval>| Gts::from_parts(&shorter, &s.terms(), s.remainder());
+    assert!(one_candidate(y0.clone(), moved).is_none());
+    let other = Ctx::new(&Basis::new(&[ivf(1.25, 1.25)], 3.0).unwrap(), 0.25).unwrap();
+    let renamed = |s: &Gts<Interval>| Gts::from_parts(&other, &s.terms(), s.remainder());
+    let y = Gts::from_parts(&ctx, &[one, (key(0, 1), ivf(0.5, 0.5))], rem);
+    assert!(one_candidate(y, renamed).is_none());
+}
+
+/// A genuine contraction: T(y) = 1 + ∫₀^u y/2 on [0, 1/4] (generators 1 and 1.5, M = 8)
+/// validates from the constant 1, and the validated set holds its fixed point e^(u/2) at
+/// u ∈ {0, 1/16, 1/8, 3/16, 1/4} — e^(u/2) rounded down and up at 200 bits inside the
+/// enclosure's ends — and is narrow there (the terms beyond M are ≈ (u/2)⁹/9! ≤ 2e-14).
+#[test]
+fn a_contraction_validates_and_holds_its_fixed_point() {
+    use rug::float::Round;
+    let ctx = Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 8.0).unwrap(), 0.25).unwrap();
+    let opts = SingularOptions {
+        iterations: 10,
+        truncated_iterations: false,
+        ..SingularOptions::default()
+    };
+    let half = Gts::from_exact_f64(0.5);
+    let y = validate(
+        vec![Gts::constant_in(&ctx, ivf(1.0, 1.0))],
+        usize::MAX,
+        &opts,
+        8.0,
+        (false, 10),
+        false,
+        |y, _| {
+            Some(vec![
+                Gts::constant_in(&ctx, ivf(1.0, 1.0)) + (y[0].clone() * half.clone()).integral(),
+            ])
+        },
+    )
+    .expect("a contraction validates");
+    for u in [0.0, 0.0625, 0.125, 0.1875, 0.25] {
+        let e = y[0].eval(&ivf(u, u));
+        let x = Float::with_val(200, u) / 2u32;
+        let (mut lo, mut hi) = (Float::with_val(200, &x), Float::with_val(200, &x));
+        lo.exp_round(Round::Down);
+        hi.exp_round(Round::Up);
+        assert!(
+            lo >= e.inf() && hi <= e.sup(),
+            "u = {u}: e^(u/2) = {lo} not in {e:?}"
+        );
+        assert!(e.wid() < 1e-12, "u = {u}: {e:?}");
+    }
+}
