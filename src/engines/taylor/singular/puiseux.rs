@@ -789,6 +789,24 @@ impl<I: Enclosure> Gts<I> {
         bounded(&self.rem) && self.terms.iter().all(|(_, c)| bounded(c))
     }
 
+    /// Whether both operands of a product or power are bounded. One that is not — above all
+    /// an expansion that does not exist ([`Real::unbounded`]: no terms, every real as the
+    /// remainder), the sign of a hypothesis failing — must make the result unbounded too:
+    /// the shortcuts for a value without a context read it as its constant coefficient, which
+    /// is 0 there, and would drop the remainder (x·unbounded = 0, |unbounded|^q = 0).
+    fn both_bounded(a: &Self, b: &Self) -> bool {
+        a.is_bounded() && b.is_bounded()
+    }
+
+    /// [`Real::unbounded`] in the context `ctx` (kept, so that a later integral or mean of it
+    /// has a domain: unbounded as well).
+    fn unbounded_in(ctx: Option<Arc<Ctx<I>>>) -> Self {
+        Self {
+            ctx,
+            ..<Self as Real>::unbounded()
+        }
+    }
+
     /// self^q for a value of one sign s (the constant coefficient sc₀ > 0 and every function
     /// of the set > 0): c₀^q Σ binom(q, k) εᵏ + Lagrange's remainder, ε = (x − c₀)/c₀.
     fn analytic_pow(&self, q: I) -> Self {
@@ -1130,6 +1148,9 @@ impl<I: Enclosure> Gts<I> {
     /// multiplied again later by values without a constant term, which lifts those terms
     /// beyond M anyway (see [`Gts::analytic_pow`]).
     fn product(&self, o: &Gts<I>, cut: f64) -> Gts<I> {
+        if !Self::both_bounded(self, o) {
+            return Self::unbounded_in(Gts::merge_ctx(&self.ctx, &o.ctx));
+        }
         if self.ctx.is_none() && self.is_const() {
             return o.scale_by(&self.c0());
         }
@@ -1244,6 +1265,9 @@ impl<I: Enclosure> Real for Gts<I> {
         }
     }
     fn sqrt(&self) -> Self {
+        if !Self::both_bounded(self, self) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() {
             Self::constant(Real::sqrt(&self.c0()))
         } else {
@@ -1264,6 +1288,9 @@ impl<I: Enclosure> Real for Gts<I> {
         }
     }
     fn pow(&self, y: &Self) -> Self {
+        if !Self::both_bounded(self, y) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if !y.is_const() {
             return Self::unbounded();
         }
@@ -1274,6 +1301,9 @@ impl<I: Enclosure> Real for Gts<I> {
     }
     /// |x|^(q−1)x: ±u^q for x = ±u; s·(s x)^q for x of one sign s.
     fn spow(&self, q: &Self) -> Self {
+        if !Self::both_bounded(self, q) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() && q.is_const() {
             return Self::constant(Real::spow(&self.c0(), &q.c0()));
         }
@@ -1303,6 +1333,9 @@ impl<I: Enclosure> Real for Gts<I> {
     }
     /// |x|^q: u^q for x = ±u; (s x)^q for x of one sign s.
     fn apow(&self, q: &Self) -> Self {
+        if !Self::both_bounded(self, q) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() && q.is_const() {
             return Self::constant(Real::apow(&self.c0(), &q.c0()));
         }
@@ -1648,6 +1681,38 @@ mod tests {
         let m = Real::apow(&u, &Gts::constant(iv(1.5, 1.5)));
         assert_eq!(m.terms().len(), 1);
         assert_eq!(m.remainder(), ZERO);
+    }
+
+    /// A value without an expansion ([`Real::unbounded`]) stays unbounded through products —
+    /// with a value of the domain, with a constant, with an exact 0, in either order — and
+    /// through powers, roots and quotients; so does the power of a value reaching 0 once it is
+    /// multiplied by another value (the start step's check W > 0 and the crossings' signs
+    /// rely on it: an unbounded image refuses the step).
+    #[test]
+    fn a_value_without_an_expansion_stays_unbounded_through_products_and_powers() {
+        let ctx = Ctx::new(&Basis::new(&[iv(1.5, 1.5)], 6.0).unwrap(), 0.1).unwrap();
+        let u = Gts::variable(&ctx, 1);
+        let none = Gts::<Interval>::unbounded();
+        let q = Gts::constant(iv(1.5, 1.5));
+        let c = Gts::constant(iv(2.0, 2.0));
+        let zero = Gts::constant_in(&ctx, ZERO);
+        for x in [&u, &c, &zero] {
+            assert!(!(x.clone() * none.clone()).is_bounded(), "{x:?}·unbounded");
+            assert!(!(none.clone() * x.clone()).is_bounded(), "unbounded·{x:?}");
+            assert!(!(x.clone() / none.clone()).is_bounded(), "{x:?}/unbounded");
+            assert!(!(none.clone() / x.clone()).is_bounded(), "unbounded/{x:?}");
+        }
+        assert!(!Real::spow(&none, &q).is_bounded());
+        assert!(!Real::apow(&none, &q).is_bounded());
+        assert!(!Real::pow(&none, &q).is_bounded());
+        assert!(!Real::sqrt(&none).is_bounded());
+        assert!(!Real::spow(&u, &none).is_bounded());
+        // a product keeps the domain: its integral is unbounded, not refused by a panic
+        assert!(!(u.clone() * none.clone()).integral().is_bounded());
+        let y = u.clone() - Gts::constant_in(&ctx, iv(0.05, 0.05));
+        let one_u = u.clone() + Gts::constant_in(&ctx, iv(1.0, 1.0));
+        assert!(!(Real::spow(&y, &q) * one_u.clone()).is_bounded());
+        assert!(!(one_u * Real::abs(&y)).is_bounded());
     }
 
     /// The toy basis of the inclusion tests: generators 1 and 1.5, cut-off M = 3 (the keys

@@ -607,3 +607,86 @@ fn a_contraction_validates_and_holds_its_fixed_point() {
         assert!(e.wid() < 1e-12, "u = {u}: {e:?}");
     }
 }
+
+/// The start step from (x, z, v) = (0, 0, −1) on a toy tape, x the independent variable and z
+/// the second component at its branch point: its state at t₁, or `None` (refused).
+fn start_of(tape: &Tape<Interval, 3>, delta: f64) -> Option<(f64, [Interval; 3])> {
+    let opts = SingularOptions::default();
+    let st = SingularTape::of(tape, &opts).expect("constant exponents");
+    let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
+    let x0 = [ivf(0.0, 0.0), ivf(0.0, 0.0), ivf(-1.0, -1.0)];
+    start::start_point(&st.tape, &basis, tape, 0.0, &x0, delta, &opts)
+}
+
+/// ẋ = v, ż = v·(1 + k·x), v̇ = a − ½|x|^(q−1)x − ½·force(z, x), q = 1.5 (`k`, `a` exact).
+fn toy_start_tape(
+    k: f64,
+    a: f64,
+    force: impl Fn(&Rec<Interval>, &Rec<Interval>) -> Rec<Interval>,
+) -> Tape<Interval, 3> {
+    let q = ivf(1.5, 1.5);
+    let (k, a, half) = (ivf(k, k), ivf(a, a), ivf(0.5, 0.5));
+    Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+        let zrate = v[0].scale(&k).shift(&ivf(1.0, 1.0));
+        vec![
+            v[2].clone(),
+            v[2].clone() * zrate,
+            -(Scalar::spow(&v[0], &q) + force(&v[1], &v[0])).scale(&half) + Rec::constant(a),
+        ]
+    })
+}
+
+/// The start step's hypothesis that f_w keeps its sign (dt/du = σ/f_w bounded): with v̇ = 40
+/// the velocity v = ẋ reaches 0 at u = |x| ≈ 1/80, where x turns back. On δ = 0.005 the step
+/// is taken; on δ = 0.05, where 1/v has no expansion, it must be refused.
+#[test]
+fn the_start_step_is_refused_where_the_rate_of_its_variable_reaches_zero() {
+    let tape = toy_start_tape(0.0, 40.0, |z, _| Scalar::spow(z, &ivf(1.5, 1.5)));
+    assert!(start_of(&tape, 0.005).is_some());
+    assert!(start_of(&tape, 0.05).is_none());
+}
+
+/// The start step's hypothesis W_z > 0 for the factored z = s·u·W_z: with ż = v·(1 − 50u)
+/// (x = −u), W_z = 1 − 25u reaches 0 at u = 0.04. On δ = 0.01 the step is taken; on δ = 0.05
+/// it must be refused — with z in a power (|z|^(q−1)z), in |z|, and in a power multiplied by
+/// another value (|z|^(q−1)z·(1 + x): the product of the power's unbounded value must stay
+/// unbounded).
+#[test]
+fn the_start_step_is_refused_where_a_factored_component_turns_back() {
+    let q = ivf(1.5, 1.5);
+    let power = toy_start_tape(50.0, 0.0, |z, _| Scalar::spow(z, &q));
+    let abs = toy_start_tape(50.0, 0.0, |z, _| Real::abs(z));
+    let product = toy_start_tape(50.0, 0.0, |z, x| {
+        Scalar::spow(z, &q) * x.shift(&ivf(1.0, 1.0))
+    });
+    for (what, tape) in [("power", &power), ("|z|", &abs), ("product", &product)] {
+        assert!(
+            start_of(tape, 0.01).is_some(),
+            "{what}: refused on δ = 0.01"
+        );
+        assert!(start_of(tape, 0.05).is_none(), "{what}: taken on δ = 0.05");
+    }
+}
+
+/// The start step's roles: a component at 0 whose rate is 0 there is not factored (it does
+/// not start with u), so a power of it has no expansion and the step is refused (ż = x: z
+/// starts as −u²/2); and with every rate 0 at the start (v = 0) there is no variable at all.
+#[test]
+fn the_start_step_is_refused_without_a_certain_rate() {
+    let q = ivf(1.5, 1.5);
+    let tape = Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+        vec![
+            v[2].clone(),
+            v[0].clone(),
+            -(Scalar::spow(&v[0], &q) + Scalar::spow(&v[1], &q)).scale(&ivf(0.5, 0.5)),
+        ]
+    });
+    assert!(start_of(&tape, 0.005).is_none());
+    let twin = toy_start_tape(0.0, 0.0, |z, _| Scalar::spow(z, &q));
+    assert!(start_of(&twin, 0.005).is_some());
+    let opts = SingularOptions::default();
+    let st = SingularTape::of(&twin, &opts).unwrap();
+    let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
+    let rest = [ivf(0.0, 0.0), ivf(0.0, 0.0), ivf(0.0, 0.0)];
+    assert!(start::start_point(&st.tape, &basis, &twin, 0.0, &rest, 0.005, &opts).is_none());
+}
