@@ -66,13 +66,22 @@ def test_numbers_strings_and_doubles():
     assert a.v0[0, 0] <= 0.3 <= a.v0[0, 1] and a.v0[0, 0] < a.v0[0, 1]
 
 
-def test_not_proved_per_case_and_raised():
-    # separation cannot happen before T = 1: that case is not proved, the others are
+def test_no_separation_is_proved_and_not_proved_is_raised():
+    # separation cannot happen before T = 1: that is proved (T_s > 1, e = 0 by the paper's
+    # convention), with no enclosure of e and the statement in ``reason``
     r = bwcl.cor_rigorous("shc", base=DSS, v0=[1, 2], horizon=1.0)
-    assert r.status == ("not proved", "not proved")
-    assert all(r.reason) and np.isnan(r.e).all() and r.e_text == (None, None)
+    assert r.status == ("proved", "proved") and r.proved.all() and not r.separated.any()
+    assert all("no separation before the horizon" in s for s in r.reason)
+    assert np.isnan(r.e).all() and r.e_text == (None, None)
+    # ... and not raised as a failure
+    bwcl.cor_rigorous("shc", base=DSS, v0=[1], horizon=1.0, raise_on_failure=True)
+    # the Hunt–Crossley limit at σ = 30 without the precision fallback is not proved, with
+    # its reason, and raised on request
+    nd = ["1e-300", 0, 0.5, 30, 1.5, 1.5]
+    q = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=0)
+    assert q.status == ("not proved",) and "undecidable" in q.reason[0]
     with pytest.raises(bwcl.NotProvedError) as ex:
-        bwcl.cor_rigorous("shc", base=DSS, v0=[1], horizon=1.0, raise_on_failure=True)
+        bwcl.cor_rigorous("shc", nd=nd, fallback_bits=0, raise_on_failure=True)
     err = pickle.loads(pickle.dumps(ex.value))
     assert isinstance(err, bwcl.NotProvedError) and str(err) == str(ex.value)
     assert err.result.status == ("not proved",)

@@ -323,7 +323,8 @@ fn solve_side<const N: usize, I: Enclosure>(
 
 /// A validated fixed point of the Picard-type operator `op`: plain images of `y`, then
 /// candidates S (the last image inflated) until T(S) ⊆ S coefficientwise in every component
-/// but `skip`, then `tighten` more images. The solution is in T(S) and in each further image
+/// but `skip` (every term of either, a missing one 0, the remainder, on one basis and domain:
+/// [`Gts::subset_of`]), then `tighten` more images. The solution is in T(S) and in each further image
 /// (the fixed-point argument of the caller's operator); `None` when no candidate validates in
 /// `tries` tries.
 ///

@@ -367,6 +367,20 @@ impl<I: Enclosure> Ctx<I> {
         self.delta
     }
 
+    /// Whether `other` is a context of the same basis and domain [0, δ] (possibly with another
+    /// cut-off, [`Ctx::truncated`]): only then does a key index stand for the same exponent in
+    /// both and a remainder bound the same u. The basis is the same when it is one (the usual
+    /// case: contexts of one step share it) or made from the same generators with the same
+    /// keys (a basis of MPFR intervals made twice).
+    pub fn same_domain(&self, other: &Self) -> bool {
+        let (a, b) = (&self.basis, &other.basis);
+        let same_basis = Arc::ptr_eq(a, b)
+            || (a.keys == b.keys
+                && a.gens.len() == b.gens.len()
+                && a.gens.iter().zip(&b.gens).all(|(x, y)| x.same(y)));
+        self.delta == other.delta && same_basis
+    }
+
     /// The same basis and domain with the operations keeping terms only up to exponent `m`
     /// (at least 1, at most M): every term above goes into the remainder by its range
     /// c·[0, δ^α], as those above M do — as sound as the full context, and as cheap as the
@@ -490,6 +504,29 @@ impl<I: Enclosure> Gts<I> {
         let mut g = Self::constant(c);
         g.ctx = Some(ctx.clone());
         g
+    }
+
+    /// The value Σ c·u^α + R on the context's domain from (exponent vector, coefficient)
+    /// pairs (each key in the basis, at most once) and the remainder R: for tests that need a
+    /// value of a given form.
+    #[cfg(test)]
+    pub(crate) fn from_parts(ctx: &Arc<Ctx<I>>, terms: &[(Key, I)], rem: I) -> Self {
+        let mut t: Vec<(u16, I)> = terms
+            .iter()
+            .map(|(k, c)| {
+                let i = ctx.basis.keys.binary_search(k).expect("a key of the basis");
+                (i as u16, c.clone())
+            })
+            .collect();
+        t.sort_by_key(|e| e.0);
+        assert!(t.windows(2).all(|w| w[0].0 < w[1].0), "a key given twice");
+        Self {
+            ctx: Some(ctx.clone()),
+            terms: t,
+            rem,
+            var: 0,
+            fac: None,
+        }
     }
 
     /// (exponent vector, coefficient) of each term.
@@ -635,18 +672,53 @@ impl<I: Enclosure> Gts<I> {
         }
     }
 
-    /// Every coefficient and the remainder of `self` inside those of `other` (then every
-    /// function of `self`'s set is in `other`'s: u^α ≥ 0 on the domain).
+    /// Whether `self`'s set lies in `other`'s, decided coefficientwise (the fixed-point test
+    /// T(S) ⊆ S of [`super::validate`]): true only when
+    /// - both are values on one basis and domain ([`Ctx::same_domain`]; a value without a
+    ///   context has the constant term only, the same function on every domain), and
+    /// - for every key of either value, `self`'s coefficient lies in `other`'s, a key that one
+    ///   of them lacks having the coefficient 0 there: a term only in `self` needs its
+    ///   coefficient ⊆ [0, 0], a term only in `other` needs 0 in its coefficient, and
+    /// - `self`'s remainder lies in `other`'s.
+    ///
+    /// Sufficient: a function y of `self`'s set has at each u ∈ [0, δ] a value
+    /// y(u) = Σ c_α u^α + r with c_α ∈ C_α, r ∈ R (u^α a real ≥ 0 on the domain, the same
+    /// function of u for one key in both values); with C_α ⊆ C′_α (0 ∈ C′_α for a key `self`
+    /// lacks, C_α = [0, 0] for one `other` lacks) and R ⊆ R′ the same c_α and r give y(u) as a
+    /// value of `other`'s set at u, for every u. Not necessary (a remainder may hold what a
+    /// coefficient lacks): false only makes the validation try a wider candidate.
     pub fn subset_of(&self, other: &Self) -> bool {
+        let same_domain = match (&self.ctx, &other.ctx) {
+            (Some(a), Some(b)) => a.same_domain(b),
+            (None, _) => self.is_const(),
+            (_, None) => other.is_const(),
+        };
+        if !same_domain {
+            return false;
+        }
         if !self.rem.subset(&other.rem) {
             return false;
         }
-        self.terms.iter().all(
-            |(k, c)| match other.terms.binary_search_by(|(ko, _)| ko.cmp(k)) {
-                Ok(i) => c.subset(&other.terms[i].1),
-                Err(_) => c.subset(&I::zero()),
-            },
-        )
+        // the keys of both in increasing order (each list is sorted), u32::MAX past the end
+        let zero = I::zero();
+        let key = |t: &[(u16, I)], i: usize| t.get(i).map_or(u32::MAX, |e| e.0 as u32);
+        let (mut i, mut j) = (0, 0);
+        while i < self.terms.len() || j < other.terms.len() {
+            let (ka, kb) = (key(&self.terms, i), key(&other.terms, j));
+            let inside = if ka == kb {
+                self.terms[i].1.subset(&other.terms[j].1)
+            } else if ka < kb {
+                self.terms[i].1.subset(&zero) // a term only in self: 0 in other
+            } else {
+                zero.subset(&other.terms[j].1) // a term only in other: 0 in self
+            };
+            if !inside {
+                return false;
+            }
+            i += usize::from(ka <= kb);
+            j += usize::from(kb <= ka);
+        }
+        true
     }
 
     /// Each coefficient widened by `rel` of its width plus `abs_c` of its magnitude, the
@@ -715,6 +787,24 @@ impl<I: Enclosure> Gts<I> {
     /// Every coefficient and the remainder are bounded.
     pub fn is_bounded(&self) -> bool {
         bounded(&self.rem) && self.terms.iter().all(|(_, c)| bounded(c))
+    }
+
+    /// Whether both operands of a product or power are bounded. One that is not — above all
+    /// an expansion that does not exist ([`Real::unbounded`]: no terms, every real as the
+    /// remainder), the sign of a hypothesis failing — must make the result unbounded too:
+    /// the shortcuts for a value without a context read it as its constant coefficient, which
+    /// is 0 there, and would drop the remainder (x·unbounded = 0, |unbounded|^q = 0).
+    fn both_bounded(a: &Self, b: &Self) -> bool {
+        a.is_bounded() && b.is_bounded()
+    }
+
+    /// [`Real::unbounded`] in the context `ctx` (kept, so that a later integral or mean of it
+    /// has a domain: unbounded as well).
+    fn unbounded_in(ctx: Option<Arc<Ctx<I>>>) -> Self {
+        Self {
+            ctx,
+            ..<Self as Real>::unbounded()
+        }
     }
 
     /// self^q for a value of one sign s (the constant coefficient sc₀ > 0 and every function
@@ -1058,6 +1148,9 @@ impl<I: Enclosure> Gts<I> {
     /// multiplied again later by values without a constant term, which lifts those terms
     /// beyond M anyway (see [`Gts::analytic_pow`]).
     fn product(&self, o: &Gts<I>, cut: f64) -> Gts<I> {
+        if !Self::both_bounded(self, o) {
+            return Self::unbounded_in(Gts::merge_ctx(&self.ctx, &o.ctx));
+        }
         if self.ctx.is_none() && self.is_const() {
             return o.scale_by(&self.c0());
         }
@@ -1172,6 +1265,9 @@ impl<I: Enclosure> Real for Gts<I> {
         }
     }
     fn sqrt(&self) -> Self {
+        if !Self::both_bounded(self, self) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() {
             Self::constant(Real::sqrt(&self.c0()))
         } else {
@@ -1192,6 +1288,9 @@ impl<I: Enclosure> Real for Gts<I> {
         }
     }
     fn pow(&self, y: &Self) -> Self {
+        if !Self::both_bounded(self, y) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if !y.is_const() {
             return Self::unbounded();
         }
@@ -1202,6 +1301,9 @@ impl<I: Enclosure> Real for Gts<I> {
     }
     /// |x|^(q−1)x: ±u^q for x = ±u; s·(s x)^q for x of one sign s.
     fn spow(&self, q: &Self) -> Self {
+        if !Self::both_bounded(self, q) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() && q.is_const() {
             return Self::constant(Real::spow(&self.c0(), &q.c0()));
         }
@@ -1231,6 +1333,9 @@ impl<I: Enclosure> Real for Gts<I> {
     }
     /// |x|^q: u^q for x = ±u; (s x)^q for x of one sign s.
     fn apow(&self, q: &Self) -> Self {
+        if !Self::both_bounded(self, q) {
+            return Self::unbounded_in(self.ctx.clone());
+        }
         if self.is_const() && self.ctx.is_none() && q.is_const() {
             return Self::constant(Real::apow(&self.c0(), &q.c0()));
         }
@@ -1576,6 +1681,313 @@ mod tests {
         let m = Real::apow(&u, &Gts::constant(iv(1.5, 1.5)));
         assert_eq!(m.terms().len(), 1);
         assert_eq!(m.remainder(), ZERO);
+    }
+
+    /// A value without an expansion ([`Real::unbounded`]) stays unbounded through products —
+    /// with a value of the domain, with a constant, with an exact 0, in either order — and
+    /// through powers, roots and quotients; so does the power of a value reaching 0 once it is
+    /// multiplied by another value (the start step's check W > 0 and the crossings' signs
+    /// rely on it: an unbounded image refuses the step).
+    #[test]
+    fn a_value_without_an_expansion_stays_unbounded_through_products_and_powers() {
+        let ctx = Ctx::new(&Basis::new(&[iv(1.5, 1.5)], 6.0).unwrap(), 0.1).unwrap();
+        let u = Gts::variable(&ctx, 1);
+        let none = Gts::<Interval>::unbounded();
+        let q = Gts::constant(iv(1.5, 1.5));
+        let c = Gts::constant(iv(2.0, 2.0));
+        let zero = Gts::constant_in(&ctx, ZERO);
+        for x in [&u, &c, &zero] {
+            assert!(!(x.clone() * none.clone()).is_bounded(), "{x:?}·unbounded");
+            assert!(!(none.clone() * x.clone()).is_bounded(), "unbounded·{x:?}");
+            assert!(!(x.clone() / none.clone()).is_bounded(), "{x:?}/unbounded");
+            assert!(!(none.clone() / x.clone()).is_bounded(), "unbounded/{x:?}");
+        }
+        assert!(!Real::spow(&none, &q).is_bounded());
+        assert!(!Real::apow(&none, &q).is_bounded());
+        assert!(!Real::pow(&none, &q).is_bounded());
+        assert!(!Real::sqrt(&none).is_bounded());
+        assert!(!Real::spow(&u, &none).is_bounded());
+        // a product keeps the domain: its integral is unbounded, not refused by a panic
+        assert!(!(u.clone() * none.clone()).integral().is_bounded());
+        let y = u.clone() - Gts::constant_in(&ctx, iv(0.05, 0.05));
+        let one_u = u.clone() + Gts::constant_in(&ctx, iv(1.0, 1.0));
+        assert!(!(Real::spow(&y, &q) * one_u.clone()).is_bounded());
+        assert!(!(one_u * Real::abs(&y)).is_bounded());
+    }
+
+    /// The toy basis of the inclusion tests: generators 1 and 1.5, cut-off M = 3 (the keys
+    /// 1, u, u^1.5, u², u^2.5, u³ and u^(2·1.5)), on the domain [0, 1/4].
+    fn toy_ctx() -> Arc<Ctx<Interval>> {
+        Ctx::new(&Basis::new(&[iv(1.5, 1.5)], 3.0).unwrap(), 0.25).unwrap()
+    }
+
+    /// The key of u^(k₀ + 1.5k₁).
+    fn key(k0: u8, k1: u8) -> Key {
+        let mut k = [0; MAX_GENS];
+        (k[0], k[1]) = (k0, k1);
+        k
+    }
+
+    /// Each clause of the inclusion decides a case alone (the others hold there): the
+    /// remainder; a term only in the image (its coefficient must be ⊆ [0, 0]); a term only in
+    /// the candidate (0 must lie in its coefficient); a term in both; and the contexts (one
+    /// basis and domain, or no context and the constant term only).
+    #[test]
+    fn each_clause_of_the_inclusion_decides_a_case_alone() {
+        let ctx = toy_ctx();
+        let g = |terms: &[(Key, Interval)], rem: Interval| Gts::from_parts(&ctx, terms, rem);
+        let one = (key(0, 0), iv(1.0, 1.0));
+        let u = |c: Interval| (key(1, 0), c);
+        let u15 = |c: Interval| (key(0, 1), c);
+        // the remainder alone
+        let (wide, thin) = (iv(-0.125, 0.125), iv(-0.0625, 0.0625));
+        let a = g(&[one, u(iv(1.0, 1.0))], wide);
+        let b = g(&[one, u(iv(1.0, 1.0))], thin);
+        assert!(!a.subset_of(&b) && b.subset_of(&a));
+        // a term only in self: inside only as the coefficient 0
+        let b = g(&[one], ZERO);
+        assert!(!g(&[one, u15(iv(0.5, 0.5))], ZERO).subset_of(&b));
+        assert!(!g(&[one, u15(iv(0.0, 0.5))], ZERO).subset_of(&b));
+        assert!(g(&[one, u15(ZERO)], ZERO).subset_of(&b));
+        // a term only in other: inside only where its coefficient holds 0
+        let a = g(&[one], ZERO);
+        assert!(!a.subset_of(&g(&[one, u15(iv(0.5, 1.0))], ZERO)));
+        assert!(!a.subset_of(&g(&[one, u15(iv(-1.0, -0.5))], ZERO)));
+        assert!(a.subset_of(&g(&[one, u15(iv(-0.5, 1.0))], ZERO)));
+        assert!(a.subset_of(&g(&[one, u15(iv(0.0, 1.0))], ZERO)));
+        // (also when the other key sorts before or after all of self's)
+        assert!(!g(&[u(iv(1.0, 1.0))], ZERO).subset_of(&g(&[one, u(iv(1.0, 1.0))], ZERO)));
+        assert!(!a.subset_of(&g(&[one, (key(3, 0), iv(0.5, 1.0))], ZERO)));
+        // a term in both
+        let a = g(&[one, u(iv(0.5, 1.0))], ZERO);
+        assert!(!a.subset_of(&g(&[one, u(iv(0.5, 0.75))], ZERO)));
+        assert!(a.subset_of(&g(&[one, u(iv(0.25, 1.0))], ZERO)));
+        // the contexts: the same basis and domain with another cut-off is the same set
+        let a = g(&[one, u15(iv(0.5, 0.5))], thin);
+        let b = Gts::from_parts(&ctx.truncated(2.0), &a.terms(), thin);
+        assert!(a.subset_of(&b) && b.subset_of(&a));
+        // the same generators in a basis made anew: the same exponents under the same keys
+        let again = Ctx::new(&Basis::new(&[iv(1.5, 1.5)], 3.0).unwrap(), 0.25).unwrap();
+        assert!(a.subset_of(&Gts::from_parts(&again, &a.terms(), thin)));
+        // another generator: key (0, 1) is u^1.25 there, not u^1.5
+        let other = Ctx::new(&Basis::new(&[iv(1.25, 1.25)], 3.0).unwrap(), 0.25).unwrap();
+        let b = Gts::from_parts(&other, &a.terms(), thin);
+        assert!(!a.subset_of(&b) && !b.subset_of(&a));
+        // another domain
+        let shorter = Ctx::new(&ctx.basis, 0.125).unwrap();
+        let b = Gts::from_parts(&shorter, &a.terms(), thin);
+        assert!(!a.subset_of(&b) && !b.subset_of(&a));
+        // a constant without a context: its one term against the constant term
+        let c = Gts::constant(iv(1.0, 1.0));
+        assert!(c.subset_of(&g(&[one, u15(iv(-1.0, 1.0))], ZERO)));
+        assert!(!c.subset_of(&g(&[one, u15(iv(0.5, 1.0))], ZERO)));
+        assert!(g(&[one], ZERO).subset_of(&Gts::constant(iv(0.5, 1.0))));
+        assert!(!g(&[one, u15(iv(0.5, 0.5))], ZERO).subset_of(&Gts::constant(iv(0.5, 1.0))));
+        assert!(c.subset_of(&Gts::constant(iv(0.5, 1.0))));
+        assert!(!Gts::<Interval>::unbounded().subset_of(&c));
+    }
+
+    /// The clauses of the inclusion ([`Gts::subset_of`]), for [`rule`] to leave one out.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    enum Clause {
+        Remainder,
+        OnlyInSelf,
+        OnlyInOther,
+        InBoth,
+        Context,
+    }
+
+    /// The inclusion as its documentation states it, read from the values' exponent vectors,
+    /// with the clause `without` left out (every key considered, 0 where a value lacks it).
+    fn rule(a: &Gts<Interval>, b: &Gts<Interval>, without: Option<Clause>) -> bool {
+        let on = |c: Clause| without != Some(c);
+        let (ca, cb) = (a.ctx.as_ref().unwrap(), b.ctx.as_ref().unwrap());
+        let same = ca.delta == cb.delta
+            && ca.basis.gens.len() == cb.basis.gens.len()
+            && ca
+                .basis
+                .gens
+                .iter()
+                .zip(&cb.basis.gens)
+                .all(|(x, y)| x.same(y));
+        if on(Clause::Context) && !same {
+            return false;
+        }
+        if on(Clause::Remainder) && !a.rem.subset(b.rem) {
+            return false;
+        }
+        let (ta, tb) = (a.terms(), b.terms());
+        let mut keys: Vec<Key> = ta.iter().chain(&tb).map(|t| t.0).collect();
+        keys.sort();
+        keys.dedup();
+        keys.iter().all(|k| {
+            let find = |t: &[(Key, Interval)]| t.iter().find(|e| e.0 == *k).map(|e| e.1);
+            match (find(&ta), find(&tb)) {
+                (Some(x), Some(y)) => !on(Clause::InBoth) || x.subset(y),
+                (Some(x), None) => !on(Clause::OnlyInSelf) || x.subset(ZERO),
+                (None, Some(y)) => !on(Clause::OnlyInOther) || ZERO.subset(y),
+                (None, None) => unreachable!(),
+            }
+        })
+    }
+
+    /// The inclusion against the sets themselves, by brute force: random pairs of toy values
+    /// (dyadic coefficients, the second often a copy of the first with one part changed —
+    /// widened, narrowed, a term dropped or added with or without 0 in it — or the same
+    /// terms in another basis). Whenever `a.subset_of(b)`, every sampled function of a's set —
+    /// its coefficients at their ends (every corner) and midpoints, its remainder a constant at
+    /// either end — at u = s² for s ∈ {0, 1/16, 1/8, 1/4, 3/8, 1/2} (u = 0 and δ = 1/4
+    /// included; u^α = s^(2k₀ + 3k₁) exactly) lies in b's enclosure at u, compared as
+    /// rationals. The decision also equals [`rule`]; and for each clause, the rule without it
+    /// accepts pairs where the brute force finds a function outside (so an inclusion test
+    /// lacking that clause fails here).
+    #[test]
+    fn an_inclusion_holds_for_every_sampled_function_of_the_set() {
+        use rug::{Rational, ops::Pow};
+        /// Draws from xorshift: k/8 ends, small widths.
+        struct Draw<F>(F);
+        impl<F: FnMut() -> u64> Draw<F> {
+            fn pick(&mut self, n: u64) -> u64 {
+                (self.0)() % n
+            }
+            /// j/d for j in 0..n
+            fn frac(&mut self, n: u64, d: f64) -> f64 {
+                self.pick(n) as f64 / d
+            }
+            /// A thin coefficient k/8 (|k| ≤ 16), 0, or [k/8, k/8 + w] (w of 1/8 to 1/2).
+            fn coef(&mut self) -> Interval {
+                let a = (self.pick(33) as f64 - 16.0) / 8.0;
+                match self.pick(4) {
+                    0 => iv(a, a),
+                    1 => ZERO,
+                    _ => iv(a, a + (1.0 + self.frac(4, 1.0)) / 8.0),
+                }
+            }
+        }
+        let ctx = toy_ctx();
+        let other = Ctx::new(&Basis::new(&[iv(1.25, 1.25)], 3.0).unwrap(), 0.25).unwrap();
+        let keys: Vec<Key> = ctx.basis.keys.clone();
+        assert_eq!(
+            keys, other.basis.keys,
+            "both bases have the same key vectors"
+        );
+        let mut d = Draw(crate::arith::interval::xorshift(0x2545_f491_4f6c_dd1d_u64));
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        let widen = |c: Interval, l: f64, h: f64| iv(c.inf() - l, c.sup() + h);
+        let (mut accepted, mut caught) = (0, [0usize; 5]);
+        let clauses = [
+            Clause::Remainder,
+            Clause::OnlyInSelf,
+            Clause::OnlyInOther,
+            Clause::InBoth,
+            Clause::Context,
+        ];
+        for round in 0..3000 {
+            // a: the constant and about half the other keys
+            let mut ta: Vec<(Key, Interval)> = Vec::new();
+            for (i, k) in keys.iter().enumerate() {
+                if i == 0 || d.pick(2) == 0 {
+                    ta.push((*k, d.coef()));
+                }
+            }
+            let ra = match d.pick(3) {
+                0 => ZERO,
+                _ => iv(-d.frac(4, 16.0), d.frac(4, 16.0)),
+            };
+            // b: a's terms, each kept, widened, narrowed, dropped or replaced, and some added
+            let mut tb: Vec<(Key, Interval)> = Vec::new();
+            for k in &keys {
+                let c = ta.iter().find(|e| e.0 == *k).map(|e| e.1);
+                let nb = match (c, d.pick(8)) {
+                    (Some(c), 0..=3) => Some(c),
+                    (Some(c), 4) => Some(widen(c, d.frac(3, 8.0), d.frac(3, 8.0))),
+                    (Some(c), 5) if c.wid() > 0.0 => Some(iv(c.inf(), c.mid())),
+                    (Some(_), 6) => None,
+                    (Some(_), _) => Some(d.coef()),
+                    (None, 0..=4) => None,
+                    // with 0 in it, or of one sign
+                    (None, 5) => Some(iv(-d.frac(3, 8.0), d.frac(3, 8.0))),
+                    (None, _) => {
+                        let (lo, w) = ((1.0 + d.frac(8, 1.0)) / 8.0, d.frac(3, 8.0));
+                        Some(if d.pick(2) == 0 {
+                            iv(lo, lo + w)
+                        } else {
+                            iv(-lo - w, -lo)
+                        })
+                    }
+                };
+                if let Some(c) = nb {
+                    tb.push((*k, c));
+                }
+            }
+            let rb = match d.pick(4) {
+                0 | 1 => ra,
+                2 => widen(ra, d.frac(3, 16.0), d.frac(3, 16.0)),
+                _ => iv(ra.inf() / 2.0, ra.sup()),
+            };
+            let bctx = match round % 8 {
+                7 => &other,
+                _ => &ctx,
+            };
+            let a = Gts::from_parts(&ctx, &ta, ra);
+            let b = Gts::from_parts(bctx, &tb, rb);
+            let decided = a.subset_of(&b);
+            assert_eq!(decided, rule(&a, &b, None), "round {round}: {a:?} ⊆ {b:?}");
+            // the brute force: is some sampled function of a's set outside b's enclosure?
+            let mut outside = None;
+            'u: for s in [0.0, 1.0 / 16.0, 0.125, 0.25, 0.375, 0.5] {
+                let u = s * s;
+                let e = b.eval(&iv(u, u));
+                let (lo, hi) = (q(e.inf()), q(e.sup()));
+                // (c·u^α at the coefficient's ends and midpoint) per term of a
+                let parts: Vec<[Rational; 3]> = a
+                    .terms()
+                    .iter()
+                    .map(|(k, c)| {
+                        let p = Rational::from(q(s).pow(2 * k[0] as u32 + 3 * k[1] as u32));
+                        [q(c.inf()) * &p, q(c.mid()) * &p, q(c.sup()) * &p]
+                    })
+                    .collect();
+                let n = parts.len();
+                for corner in 0..(1usize << n) + 1 {
+                    let mut v = Rational::new();
+                    for (t, p) in parts.iter().enumerate() {
+                        v += if corner == 1 << n {
+                            &p[1]
+                        } else if corner >> t & 1 == 1 {
+                            &p[2]
+                        } else {
+                            &p[0]
+                        };
+                    }
+                    for r in [ra.inf(), ra.sup()] {
+                        let y = Rational::from(&v + q(r));
+                        if y < lo || y > hi {
+                            outside = Some((u, y));
+                            break 'u;
+                        }
+                    }
+                }
+            }
+            if decided {
+                accepted += 1;
+                assert!(
+                    outside.is_none(),
+                    "round {round}: a ⊆ b decided, but a function of a is {outside:?} at u, \
+                     outside b: {a:?} {b:?}"
+                );
+            }
+            if outside.is_some() {
+                for (i, c) in clauses.iter().enumerate() {
+                    if rule(&a, &b, Some(*c)) {
+                        caught[i] += 1;
+                    }
+                }
+            }
+        }
+        eprintln!("{accepted} of 3000 pairs included; violations per clause left out {caught:?}");
+        assert!(accepted > 150, "{accepted} pairs included");
+        assert!(caught.iter().all(|&n| n > 0), "{caught:?}");
     }
 }
 

@@ -478,3 +478,215 @@ fn twin_powers_equal_the_powers() {
     let a = Real::apow(&x, &q);
     assert!(!Real::twin_pow(&x, &q, &a, true).is_bounded());
 }
+
+/// An f64 interval [a, b].
+fn ivf(a: f64, b: f64) -> Interval {
+    Interval::try_from((a, b)).unwrap()
+}
+
+/// The toy basis of the validation tests: generators 1 and 1.5, cut-off M = 3, on [0, 1/4].
+fn toy_ctx() -> Arc<Ctx<Interval>> {
+    Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 3.0).unwrap(), 0.25).unwrap()
+}
+
+/// The key of u^(k₀ + 1.5k₁).
+fn key(k0: u8, k1: u8) -> puiseux::Key {
+    let mut k = [0; puiseux::MAX_GENS];
+    (k[0], k[1]) = (k0, k1);
+    k
+}
+
+/// [`validate`] of the one-component operator `image` from `y0` with a single candidate
+/// S = y0 inflated, no plain iterations before and no tightening images after: the answer is
+/// the inclusion T(S) ⊆ S alone.
+fn one_candidate(
+    y0: Gts<Interval>,
+    image: impl Fn(&Gts<Interval>) -> Gts<Interval>,
+) -> Option<Vec<Gts<Interval>>> {
+    let opts = SingularOptions {
+        tries: 1,
+        iterations: 0,
+        truncated_iterations: false,
+        tighten: 0,
+        ..SingularOptions::default()
+    };
+    validate(
+        vec![y0],
+        usize::MAX,
+        &opts,
+        3.0,
+        (false, 0),
+        false,
+        |y, _| Some(vec![image(&y[0])]),
+    )
+}
+
+/// The validation refuses a candidate whose image leaves it by one clause of the inclusion
+/// alone — a wider remainder; a term the candidate lacks; a term the image lacks where the
+/// candidate's coefficient excludes 0; an image on another domain — and accepts the identity
+/// and the same images where the clause holds (the term's coefficient 0, or 0 in the
+/// candidate's coefficient).
+#[test]
+fn the_validation_refuses_an_image_outside_the_candidate_by_any_one_clause() {
+    let ctx = toy_ctx();
+    let rem = ivf(-1e-3, 1e-3);
+    let one = (key(0, 0), ivf(1.0, 1.0));
+    let y0 = Gts::from_parts(&ctx, &[one, (key(1, 0), ivf(0.5, 0.5))], rem);
+    let with = |s: &Gts<Interval>, extra: (puiseux::Key, Interval)| {
+        let mut t = s.terms();
+        t.push(extra);
+        Gts::from_parts(&ctx, &t, s.remainder())
+    };
+    let without = |s: &Gts<Interval>, k: puiseux::Key| {
+        let t: Vec<_> = s.terms().into_iter().filter(|e| e.0 != k).collect();
+        Gts::from_parts(&ctx, &t, s.remainder())
+    };
+    assert!(one_candidate(y0.clone(), |s| s.clone()).is_some());
+    // the remainder
+    let wider = |s: &Gts<Interval>| Gts::from_parts(&ctx, &s.terms(), s.remainder() + rem);
+    assert!(one_candidate(y0.clone(), wider).is_none());
+    // a term S lacks (inside only as 0)
+    assert!(one_candidate(y0.clone(), |s| with(s, (key(0, 1), ivf(0.25, 0.25)))).is_none());
+    assert!(one_candidate(y0.clone(), |s| with(s, (key(0, 1), ivf(0.0, 0.0)))).is_some());
+    // a term T(S) lacks: inside only where S's coefficient holds 0
+    let lacks = |c: Interval| {
+        let y = Gts::from_parts(&ctx, &[one, (key(0, 1), c)], rem);
+        one_candidate(y, |s| without(s, key(0, 1)))
+    };
+    assert!(lacks(ivf(0.25, 0.25)).is_none());
+    assert!(lacks(ivf(-0.25, -0.125)).is_none());
+    assert!(lacks(ivf(-0.25, 0.25)).is_some());
+    // another domain: the same keys and coefficients are other functions there
+    let shorter = Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 3.0).unwrap(), 0.125).unwrap();
+    let moved = |s: &Gts<Interval>| Gts::from_parts(&shorter, &s.terms(), s.remainder());
+    assert!(one_candidate(y0.clone(), moved).is_none());
+    let other = Ctx::new(&Basis::new(&[ivf(1.25, 1.25)], 3.0).unwrap(), 0.25).unwrap();
+    let renamed = |s: &Gts<Interval>| Gts::from_parts(&other, &s.terms(), s.remainder());
+    let y = Gts::from_parts(&ctx, &[one, (key(0, 1), ivf(0.5, 0.5))], rem);
+    assert!(one_candidate(y, renamed).is_none());
+}
+
+/// A genuine contraction: T(y) = 1 + ∫₀^u y/2 on [0, 1/4] (generators 1 and 1.5, M = 8)
+/// validates from the constant 1, and the validated set holds its fixed point e^(u/2) at
+/// u ∈ {0, 1/16, 1/8, 3/16, 1/4} — e^(u/2) rounded down and up at 200 bits inside the
+/// enclosure's ends — and is narrow there (the terms beyond M are ≈ (u/2)⁹/9! ≤ 2e-14).
+#[test]
+fn a_contraction_validates_and_holds_its_fixed_point() {
+    use rug::float::Round;
+    let ctx = Ctx::new(&Basis::new(&[ivf(1.5, 1.5)], 8.0).unwrap(), 0.25).unwrap();
+    let opts = SingularOptions {
+        iterations: 10,
+        truncated_iterations: false,
+        ..SingularOptions::default()
+    };
+    let half = Gts::from_exact_f64(0.5);
+    let y = validate(
+        vec![Gts::constant_in(&ctx, ivf(1.0, 1.0))],
+        usize::MAX,
+        &opts,
+        8.0,
+        (false, 10),
+        false,
+        |y, _| {
+            Some(vec![
+                Gts::constant_in(&ctx, ivf(1.0, 1.0)) + (y[0].clone() * half.clone()).integral(),
+            ])
+        },
+    )
+    .expect("a contraction validates");
+    for u in [0.0, 0.0625, 0.125, 0.1875, 0.25] {
+        let e = y[0].eval(&ivf(u, u));
+        let x = Float::with_val(200, u) / 2u32;
+        let (mut lo, mut hi) = (Float::with_val(200, &x), Float::with_val(200, &x));
+        lo.exp_round(Round::Down);
+        hi.exp_round(Round::Up);
+        assert!(
+            lo >= e.inf() && hi <= e.sup(),
+            "u = {u}: e^(u/2) = {lo} not in {e:?}"
+        );
+        assert!(e.wid() < 1e-12, "u = {u}: {e:?}");
+    }
+}
+
+/// The start step from (x, z, v) = (0, 0, −1) on a toy tape, x the independent variable and z
+/// the second component at its branch point: its state at t₁, or `None` (refused).
+fn start_of(tape: &Tape<Interval, 3>, delta: f64) -> Option<(f64, [Interval; 3])> {
+    let opts = SingularOptions::default();
+    let st = SingularTape::of(tape, &opts).expect("constant exponents");
+    let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
+    let x0 = [ivf(0.0, 0.0), ivf(0.0, 0.0), ivf(-1.0, -1.0)];
+    start::start_point(&st.tape, &basis, tape, 0.0, &x0, delta, &opts)
+}
+
+/// ẋ = v, ż = v·(1 + k·x), v̇ = a − ½|x|^(q−1)x − ½·force(z, x), q = 1.5 (`k`, `a` exact).
+fn toy_start_tape(
+    k: f64,
+    a: f64,
+    force: impl Fn(&Rec<Interval>, &Rec<Interval>) -> Rec<Interval>,
+) -> Tape<Interval, 3> {
+    let q = ivf(1.5, 1.5);
+    let (k, a, half) = (ivf(k, k), ivf(a, a), ivf(0.5, 0.5));
+    Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+        let zrate = v[0].scale(&k).shift(&ivf(1.0, 1.0));
+        vec![
+            v[2].clone(),
+            v[2].clone() * zrate,
+            -(Scalar::spow(&v[0], &q) + force(&v[1], &v[0])).scale(&half) + Rec::constant(a),
+        ]
+    })
+}
+
+/// The start step's hypothesis that f_w keeps its sign (dt/du = σ/f_w bounded): with v̇ = 40
+/// the velocity v = ẋ reaches 0 at u = |x| ≈ 1/80, where x turns back. On δ = 0.005 the step
+/// is taken; on δ = 0.05, where 1/v has no expansion, it must be refused.
+#[test]
+fn the_start_step_is_refused_where_the_rate_of_its_variable_reaches_zero() {
+    let tape = toy_start_tape(0.0, 40.0, |z, _| Scalar::spow(z, &ivf(1.5, 1.5)));
+    assert!(start_of(&tape, 0.005).is_some());
+    assert!(start_of(&tape, 0.05).is_none());
+}
+
+/// The start step's hypothesis W_z > 0 for the factored z = s·u·W_z: with ż = v·(1 − 50u)
+/// (x = −u), W_z = 1 − 25u reaches 0 at u = 0.04. On δ = 0.01 the step is taken; on δ = 0.05
+/// it must be refused — with z in a power (|z|^(q−1)z), in |z|, and in a power multiplied by
+/// another value (|z|^(q−1)z·(1 + x): the product of the power's unbounded value must stay
+/// unbounded).
+#[test]
+fn the_start_step_is_refused_where_a_factored_component_turns_back() {
+    let q = ivf(1.5, 1.5);
+    let power = toy_start_tape(50.0, 0.0, |z, _| Scalar::spow(z, &q));
+    let abs = toy_start_tape(50.0, 0.0, |z, _| Real::abs(z));
+    let product = toy_start_tape(50.0, 0.0, |z, x| {
+        Scalar::spow(z, &q) * x.shift(&ivf(1.0, 1.0))
+    });
+    for (what, tape) in [("power", &power), ("|z|", &abs), ("product", &product)] {
+        assert!(
+            start_of(tape, 0.01).is_some(),
+            "{what}: refused on δ = 0.01"
+        );
+        assert!(start_of(tape, 0.05).is_none(), "{what}: taken on δ = 0.05");
+    }
+}
+
+/// The start step's roles: a component at 0 whose rate is 0 there is not factored (it does
+/// not start with u), so a power of it has no expansion and the step is refused (ż = x: z
+/// starts as −u²/2); and with every rate 0 at the start (v = 0) there is no variable at all.
+#[test]
+fn the_start_step_is_refused_without_a_certain_rate() {
+    let q = ivf(1.5, 1.5);
+    let tape = Tape::<Interval, 3>::record(|v: &[Rec<Interval>; 3]| {
+        vec![
+            v[2].clone(),
+            v[0].clone(),
+            -(Scalar::spow(&v[0], &q) + Scalar::spow(&v[1], &q)).scale(&ivf(0.5, 0.5)),
+        ]
+    });
+    assert!(start_of(&tape, 0.005).is_none());
+    let twin = toy_start_tape(0.0, 0.0, |z, _| Scalar::spow(z, &q));
+    assert!(start_of(&twin, 0.005).is_some());
+    let opts = SingularOptions::default();
+    let st = SingularTape::of(&twin, &opts).unwrap();
+    let basis = Basis::new(st.basis.gens(), opts.start_max_exp).unwrap();
+    let rest = [ivf(0.0, 0.0), ivf(0.0, 0.0), ivf(0.0, 0.0)];
+    assert!(start::start_point(&st.tape, &basis, &twin, 0.0, &rest, 0.005, &opts).is_none());
+}
