@@ -502,6 +502,30 @@ fn physical_parameters_are_refused_as_the_help_states() {
         60,
     );
     assert_eq!(code, 0, "{out}{err}");
+    // the Maxwell model's p ∈ [2, ∞) ∪ {1} as written, on the f64 path too (p just off 1 or
+    // just below 2 rounds to the double 1 or 2)
+    for p in ["1.00000000000000000001", "1.99999999999999999999"] {
+        let phys = phys
+            .replace("p=1.7", &format!("p={p}"))
+            .replace("gamma=981.0499999999999", "gamma=-961.4");
+        let o = common::bwcl(&[
+            "cor",
+            "--model",
+            "maxwell",
+            "--physical",
+            &phys,
+            "--v0",
+            "2",
+        ]);
+        assert_eq!(o.status.code(), Some(2), "p = {p}");
+        let err = text(&o.stderr);
+        assert!(
+            err.contains(&format!(
+                "p = {p} must lie in [2, ∞) ∪ {{1}} for the Maxwell model"
+            )),
+            "{err}"
+        );
+    }
 }
 
 #[test]

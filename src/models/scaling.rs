@@ -146,7 +146,7 @@ impl<R: Real> PhysicalParams<R> {
                 missing.join(", ")
             )));
         }
-        check_physical_decimals(text)?;
+        check_physical_decimals(kind, text)?;
         let [m, k, c, n, p, alpha, beta, gamma, a] = vals.map(Option::unwrap);
         let s = Self {
             m,
@@ -295,9 +295,9 @@ impl<R: Real> PhysicalParams<R> {
 /// Checks the physical parameters "m=…,k=…,…" as written (each a decimal or a range a..b;
 /// keys and syntax already checked by [`PhysicalParams::parse`]) exactly: every value of every
 /// range, as rationals, must give a nondimensional set in 𝓟 — m, k, c, A > 0, α ∈ (0, 1),
-/// β > 0, γ ∈ (−β, β) (Γ/B = γ/β), n, p ≥ 1. (The paper's BWHCL allows c = 0, β = 0 and
+/// β > 0, γ ∈ (−β, β) (Γ/B = γ/β), n, p ≥ 1, and for the Maxwell model p ∈ [2, ∞) ∪ {1}. (The paper's BWHCL allows c = 0, β = 0 and
 /// γ = ±β; 𝓟 needs σ > 0, B > 0 and |Γ| < B.) The message names the value as written.
-pub fn check_physical_decimals(text: &str) -> Result<(), ParamError> {
+pub fn check_physical_decimals(kind: ModelKind, text: &str) -> Result<(), ParamError> {
     use super::params::decimal_range;
     let mut v: std::collections::HashMap<&str, ([rug::Rational; 2], &str)> = Default::default();
     for item in text.split(',') {
@@ -337,6 +337,15 @@ pub fn check_physical_decimals(text: &str) -> Result<(), ParamError> {
         let (r, t) = get(key)?;
         if r[0] < one {
             return Err(ParamError(format!("{key} = {t} must be ≥ 1")));
+        }
+        let two = rug::Rational::from(2);
+        if key == "p"
+            && kind == ModelKind::Maxwell
+            && !((r[0] == one && r[1] == one) || r[0] >= two)
+        {
+            return Err(ParamError(format!(
+                "p = {t} must lie in [2, ∞) ∪ {{1}} for the Maxwell model"
+            )));
         }
     }
     Ok(())

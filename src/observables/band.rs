@@ -658,6 +658,58 @@ mod tests {
         assert!(p.e_at(iv(1.5, 1.5)).unwrap().subset(iv(0.8, 0.9)));
     }
 
+    /// A piece's forms hold on the piece only: e_at and ts_at refuse a v0 that reaches outside
+    /// it (the affine form extrapolated, cut by a hull proved for the piece alone, would be
+    /// claimed where nothing was proved); the thickness bounds the width of e_at at every v0
+    /// of the piece, the ends and 1000 interior doubles.
+    #[test]
+    fn a_piece_answers_only_inside_it_and_its_thickness_bounds_its_widths() {
+        let iv = |a: f64, b: f64| Interval::try_from((a, b)).unwrap();
+        let p = BandPiece {
+            v0_lo: 1.0,
+            v0_hi: 1.5,
+            v0_c: 1.25,
+            e_c: iv(0.85, 0.85 + 1e-15),
+            ts_c: iv(3.05, 3.05),
+            de: iv(-0.3, -0.2),
+            dts: iv(0.1, 0.2),
+            e: iv(0.7, 1.0),
+            ts: iv(3.0, 3.1),
+        };
+        for v in [1.0, 1.25, 1.5] {
+            assert!(p.e_at(iv(v, v)).is_some() && p.ts_at(iv(v, v)).is_some());
+        }
+        for (a, b) in [
+            (0.9, 0.9),
+            (0.99, 1.1),
+            (1.4, 1.5000001),
+            (1.6, 1.6),
+            (0.5, 2.0),
+        ] {
+            assert!(p.e_at(iv(a, b)).is_none(), "e_at [{a}, {b}]");
+            assert!(p.ts_at(iv(a, b)).is_none(), "ts_at [{a}, {b}]");
+        }
+        // a thin form too: its widths are roundings alone, wider inside (v0 − c is exact and
+        // the product is not) than at the ends and the centre (products by ±1/4 and 0 exact)
+        let thin = BandPiece {
+            e_c: iv(0.85, 0.85),
+            de: iv(-0.3, -0.3),
+            ..p
+        };
+        for (q, most) in [(p, 0.0250001), (thin, 1e-14)] {
+            let th = q.thickness();
+            for i in 0..=1000 {
+                let v = 1.0 + 0.5 * i as f64 / 1000.0;
+                let w = q.e_at(iv(v, v)).unwrap();
+                // the width rounded up, against the thickness
+                let up = (iv(w.sup(), w.sup()) - iv(w.inf(), w.inf())).sup();
+                assert!(up <= th, "v0 = {v}: width {up:e} > thickness {th:e}");
+            }
+            // and the thickness is that of the form (0.1 · 0.25 at the ends), not much more
+            assert!(th < most, "{th:e}");
+        }
+    }
+
     /// The cuts of a range: its ends exactly, inner ends with short exact decimals (each a
     /// multiple of a power of two no finer than needed), increasing, each within a fifth of a
     /// part of the equal cut.

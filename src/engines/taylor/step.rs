@@ -598,7 +598,23 @@ pub fn low_order_step<const N: usize, I: Enclosure>(
     x: &[I; N],
     h: f64,
 ) -> Option<StepOut<N, I>> {
-    let (t1, s) = step_span::<I>(t0, h);
+    low_order_to(tape, t0, x, t0 + h)
+}
+
+/// The low-order step from (t0, X) to the double t1 > t0 itself, for a step whose end is given
+/// (a crossing time where the state is enclosed): no length h need have fl(t0 + h) = t1 (for
+/// t1 > 2·t0 the sums t0 + h can fall on ties on either side of t1), so the span is
+/// [0, t1 − t0] rounded up, as [`step_span`] makes it.
+pub fn low_order_to<const N: usize, I: Enclosure>(
+    tape: &Tape<I, N>,
+    t0: f64,
+    x: &[I; N],
+    t1: f64,
+) -> Option<StepOut<N, I>> {
+    if !(t1 > t0 && t1.is_finite()) {
+        return None;
+    }
+    let s: I = span(tau::<Interval>(&point(t1), t0).sup());
     let field = |y: &[I; N]| -> [I; N] {
         let mut v = tape.eval(y);
         v.truncate(N);
@@ -787,6 +803,46 @@ mod tests {
             }
         }
         assert_eq!(short, 0, "{short} spans shorter than their step");
+    }
+
+    /// A step that must end at a given double t1 (a crossing time) ends there: for the pair
+    /// below (found by an outside review) no length h has fl(t0 + h) = t1 (the sums fall on
+    /// ties either side, rounded to the even neighbours), and the low-order step to t1 ends at
+    /// t1 exactly.
+    #[test]
+    fn a_low_order_step_ends_at_a_given_double() {
+        let (t0, t1) = (9.270128319704372e-05, 0.0006961370339016751);
+        let h: f64 = t1 - t0;
+        let mut near = vec![h];
+        for _ in 0..8 {
+            near.push(near[near.len() - 1].next_up());
+        }
+        let mut below = vec![h];
+        for _ in 0..8 {
+            below.push(below[below.len() - 1].next_down());
+        }
+        assert!(near.iter().chain(&below).all(|&h| t0 + h != t1));
+        let m = Shc::new(
+            NdParams::<Interval>::parse(ModelKind::Shc, "1.43,-1.42,0.632,0.00715,1.31,1.27")
+                .unwrap(),
+        );
+        let tape = Tape::<Interval, 3>::record(|v| m.field(v).to_vec());
+        let x0 = m.initial_state();
+        let o = low_order_to(&tape, t0, &x0, t1).expect("the step validates");
+        assert_eq!(o.piece.t1(), t1);
+        assert_eq!(
+            low_order_step(&tape, t0, &x0, h).unwrap().piece.t1(),
+            t0 + h
+        );
+        // from the impact state X moves with V = −1: X(t1) ≈ t0 − t1 (a first-order step: Z is ~1e-7 wide)
+        assert!(
+            o.x1[0].subset(Interval::try_from((-6.04e-4, -6.03e-4)).unwrap()),
+            "{:?}",
+            o.x1
+        );
+        assert!(width(&o.x1) < 1e-6, "{:?}", o.x1);
+        assert!(low_order_to(&tape, t1, &x0, t1).is_none());
+        assert!(low_order_to(&tape, t1, &x0, t0).is_none());
     }
 
     #[test]

@@ -43,7 +43,7 @@ pub mod start;
 
 use super::flow::tau;
 use super::lohner::Parallelepiped;
-use super::step::{StepOut, low_order_step};
+use super::step::{StepOut, low_order_to};
 use super::tape::Tape;
 use crate::arith::jet::dual::Dual;
 use crate::arith::{Enclosure, Real};
@@ -723,7 +723,9 @@ pub fn crossing_step<const N: usize, I: Enclosure>(
         );
     }
     let (t1, z) = cp?;
-    let lo = low_order_step(tape, t0, x0, t1 - t0)?;
+    // the piece must end at t₁ itself: z encloses the state there, and x1 is stored as the
+    // state at the piece's end (fl(t₀ + (t₁ − t₀)) may be t₁'s neighbour)
+    let lo = low_order_to(tape, t0, x0, t1)?;
     let y = lo.apriori;
     let fd = dual.eval(&Dual::seed(&y));
     let d: [[I; N]; N] = std::array::from_fn(|i| fd[i].d.clone());

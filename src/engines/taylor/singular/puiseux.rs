@@ -1944,7 +1944,7 @@ mod tests {
                     .terms()
                     .iter()
                     .map(|(k, c)| {
-                        let p = Rational::from(q(s).pow(2 * k[0] as u32 + 3 * k[1] as u32));
+                        let p = q(s).pow(2 * k[0] as u32 + 3 * k[1] as u32);
                         [q(c.inf()) * &p, q(c.mid()) * &p, q(c.sup()) * &p]
                     })
                     .collect();
@@ -1961,7 +1961,7 @@ mod tests {
                         };
                     }
                     for r in [ra.inf(), ra.sup()] {
-                        let y = Rational::from(&v + q(r));
+                        let y = &v + q(r);
                         if y < lo || y > hi {
                             outside = Some((u, y));
                             break 'u;

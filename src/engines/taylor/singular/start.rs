@@ -49,7 +49,7 @@
 use super::puiseux::{Basis, Ctx, Gts, bounded};
 use super::{SingularOptions, exit_parameter, point, trace_sing, validate};
 use crate::arith::{Enclosure, Real};
-use crate::engines::taylor::step::{StepOut, low_order_step};
+use crate::engines::taylor::step::{StepOut, low_order_to};
 use crate::engines::taylor::tape::Tape;
 use std::sync::Arc;
 
@@ -235,7 +235,7 @@ pub fn start_step<const N: usize, I: Enclosure>(
     opts: &SingularOptions,
 ) -> Option<StepOut<N, I>> {
     let (t1, z) = start_point(gts_tape, basis, tape, t0, x0, delta, opts)?;
-    let lo = low_order_step(tape, t0, x0, t1 - t0)?;
+    let lo = low_order_to(tape, t0, x0, t1)?;
     if trace_sing() && lo.piece.t1() != t1 {
         eprintln!(
             "start: the low-order piece ends at {} ≠ t₁ = {t1}",
