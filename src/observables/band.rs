@@ -689,8 +689,8 @@ mod tests {
             assert!(p.e_at(iv(a, b)).is_none(), "e_at [{a}, {b}]");
             assert!(p.ts_at(iv(a, b)).is_none(), "ts_at [{a}, {b}]");
         }
-        // a thin form too: its widths are roundings alone, wider inside (v0 − c is exact and
-        // the product is not) than at the ends and the centre (products by ±1/4 and 0 exact)
+        // a thin form too: its widths are roundings alone (an interior v0's product by v0 − c
+        // is rounded, the ends' products by ±1/4 and the centre's by 0 are exact)
         let thin = BandPiece {
             e_c: iv(0.85, 0.85),
             de: iv(-0.3, -0.3),
