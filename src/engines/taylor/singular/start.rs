@@ -235,16 +235,8 @@ pub fn start_step<const N: usize, I: Enclosure>(
     opts: &SingularOptions,
 ) -> Option<StepOut<N, I>> {
     let (t1, z) = start_point(gts_tape, basis, tape, t0, x0, delta, opts)?;
+    // (the piece ends at t₁ itself, where z encloses the state)
     let lo = low_order_to(tape, t0, x0, t1)?;
-    if trace_sing() && lo.piece.t1() != t1 {
-        eprintln!(
-            "start: the low-order piece ends at {} ≠ t₁ = {t1}",
-            lo.piece.t1()
-        );
-    }
-    if lo.piece.t1() != t1 {
-        return None;
-    }
     let x1: [I; N] = std::array::from_fn(|i| z[i].intersection(&lo.x1[i]));
     if x1.iter().any(|c| c.is_empty()) {
         return None;
