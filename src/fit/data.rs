@@ -1,6 +1,14 @@
 //! Measured CoR data: a CSV with the header `v0,e` (any column order, other columns ignored,
 //! no column named twice), one collision per row: the impact speed ṽ0 > 0 [m/s] and the CoR ẽ ∈ [0, 1].
 //!
+//! Optional columns (issue #31):
+//! - `sigma`: the error of that row's e (> 0): a standard deviation for `fit` (weights 1/σ²,
+//!   as lmfit's and curve_fit's `sigma`), the bound ±σ of set-membership `identify`;
+//! - `tc`: the contact duration t_s of that collision (> 0), in units of the base time scale
+//!   T_c,b = T_c(v0 = 1 m/s) (eq:BWSHCCM_T_c: T_c = T_c,b v0^(−(p−1)/(p+1))), so that the model's
+//!   value is T_s(𝓟(P*, v0)) v0^(−(p−1)/(p+1)) — a number of P* alone;
+//! - `tc_sigma`: the error of that row's tc (> 0, only with `tc`).
+//!
 //! Reading is bounded: at most [`MAX_FILE_BYTES`] bytes, [`MAX_LINE_CHARS`] characters per
 //! line and [`MAX_ROWS`] rows, so a wrong file (`/dev/zero`, a log) is refused quickly.
 
@@ -48,11 +56,18 @@ pub fn echo(text: &str) -> String {
     out
 }
 
-/// M measured collisions (M ≥ 1): speeds and CoRs, in file order.
+/// M measured collisions (M ≥ 1): speeds and CoRs, in file order, and the optional columns of
+/// the module doc (each `None` or of length M).
 #[derive(Clone, Debug, PartialEq)]
 pub struct CorData {
     pub v0: Vec<f64>,
     pub e: Vec<f64>,
+    /// Per-row error of e (> 0).
+    pub sigma: Option<Vec<f64>>,
+    /// Per-row contact duration in units of T_c(v0 = 1 m/s) (> 0).
+    pub tc: Option<Vec<f64>>,
+    /// Per-row error of tc (> 0).
+    pub tc_sigma: Option<Vec<f64>>,
 }
 
 /// Why a data file was refused: the message names the file line and its content.
@@ -85,7 +100,55 @@ impl CorData {
         for (i, (&v, &c)) in v0.iter().zip(&e).enumerate() {
             check_pair(v, c).map_err(|m| DataError(format!("pair {}: {m}", i + 1)))?;
         }
-        Ok(Self { v0, e })
+        Ok(Self {
+            v0,
+            e,
+            sigma: None,
+            tc: None,
+            tc_sigma: None,
+        })
+    }
+
+    /// Adds the optional columns (each of length M, every value finite and > 0; `tc_sigma`
+    /// only with `tc`).
+    pub fn with_columns(
+        mut self,
+        sigma: Option<Vec<f64>>,
+        tc: Option<Vec<f64>>,
+        tc_sigma: Option<Vec<f64>>,
+    ) -> Result<Self, DataError> {
+        if tc_sigma.is_some() && tc.is_none() {
+            return Err(DataError("tc_sigma is given without tc".into()));
+        }
+        for (name, col) in [("sigma", &sigma), ("tc", &tc), ("tc_sigma", &tc_sigma)] {
+            if let Some(c) = col {
+                if c.len() != self.len() {
+                    return Err(DataError(format!(
+                        "{} values of {name} for {} rows",
+                        c.len(),
+                        self.len()
+                    )));
+                }
+                for (i, &x) in c.iter().enumerate() {
+                    check_positive(name, x)
+                        .map_err(|m| DataError(format!("row {}: {m}", i + 1)))?;
+                }
+            }
+        }
+        self.sigma = sigma;
+        self.tc = tc;
+        self.tc_sigma = tc_sigma;
+        Ok(self)
+    }
+
+    /// The error of row i's e: its `sigma`, or `default`.
+    pub fn e_error(&self, i: usize, default: f64) -> f64 {
+        self.sigma.as_ref().map_or(default, |s| s[i])
+    }
+
+    /// The error of row i's tc: its `tc_sigma`, or `default`.
+    pub fn tc_error(&self, i: usize, default: f64) -> f64 {
+        self.tc_sigma.as_ref().map_or(default, |s| s[i])
     }
 
     /// The number of collisions M.
@@ -156,6 +219,14 @@ impl CorData {
         let is_e = |n: &String| n == "e" || n == "cor";
         let count = |f: &dyn Fn(&String) -> bool| names.iter().filter(|n| f(n)).count();
         let repeated = (1..names.len()).any(|i| names[..i].contains(&names[i]));
+        let optional = |n: &str| names.iter().position(|x| x == n);
+        let (isg, itc, itcs) = (optional("sigma"), optional("tc"), optional("tc_sigma"));
+        if itcs.is_some() && itc.is_none() {
+            return Err(DataError(format!(
+                "line {hline}: '{}': a column tc_sigma needs a column tc",
+                echo(header)
+            )));
+        }
         if count(&is_v0) != 1 || count(&is_e) != 1 || repeated {
             return Err(DataError(format!(
                 "line {hline}: '{}': the header must name the columns v0 and e once each, and \
@@ -166,6 +237,7 @@ impl CorData {
         let iv = names.iter().position(is_v0).unwrap_or(0);
         let ie = names.iter().position(is_e).unwrap_or(1);
         let (mut v0, mut e) = (Vec::new(), Vec::new());
+        let (mut sg, mut tc, mut tcs) = (Vec::new(), Vec::new(), Vec::new());
         for (ln, line) in lines {
             if let Some(e) = long(ln, line) {
                 return Err(e);
@@ -197,23 +269,67 @@ impl CorData {
             check_pair(v, c).map_err(|m| DataError(format!("line {ln}: '{}': {m}", echo(line))))?;
             v0.push(v);
             e.push(c);
+            for (col, name, out) in [
+                (isg, "sigma", &mut sg),
+                (itc, "tc", &mut tc),
+                (itcs, "tc_sigma", &mut tcs),
+            ] {
+                if let Some(i) = col {
+                    let x = num(i, name)?;
+                    check_positive(name, x)
+                        .map_err(|m| DataError(format!("line {ln}: '{}': {m}", echo(line))))?;
+                    out.push(x);
+                }
+            }
         }
         if v0.is_empty() {
             return Err(DataError(
                 "no data rows after the header: at least one (v0, e) pair is needed".into(),
             ));
         }
-        Ok(Self { v0, e })
+        let some = |c: Option<usize>, v: Vec<f64>| c.map(|_| v);
+        Ok(Self {
+            v0,
+            e,
+            sigma: some(isg, sg),
+            tc: some(itc, tc),
+            tc_sigma: some(itcs, tcs),
+        })
     }
 
-    /// The data as CSV text with the header `v0,e` (shortest round-trip decimals).
+    /// The data as CSV text with the header `v0,e` and the optional columns present
+    /// (shortest round-trip decimals).
     pub fn to_csv(&self) -> String {
-        let mut s = String::from("v0,e\n");
-        for (v, c) in self.v0.iter().zip(&self.e) {
-            s.push_str(&format!("{v},{c}\n"));
+        let cols: Vec<(&str, &Vec<f64>)> = [
+            ("sigma", &self.sigma),
+            ("tc", &self.tc),
+            ("tc_sigma", &self.tc_sigma),
+        ]
+        .into_iter()
+        .filter_map(|(n, c)| c.as_ref().map(|c| (n, c)))
+        .collect();
+        let mut s = String::from("v0,e");
+        for (n, _) in &cols {
+            s.push(',');
+            s.push_str(n);
+        }
+        s.push('\n');
+        for (i, (v, c)) in self.v0.iter().zip(&self.e).enumerate() {
+            s.push_str(&format!("{v},{c}"));
+            for (_, col) in &cols {
+                s.push_str(&format!(",{}", col[i]));
+            }
+            s.push('\n');
         }
         s
     }
+}
+
+fn check_positive(name: &str, x: f64) -> Result<(), String> {
+    if !(x.is_finite() && x > 0.0) {
+        return Err(format!("{name} = {x:e} must be a finite number > 0"));
+    }
+    Ok(())
 }
 
 fn check_pair(v: f64, e: f64) -> Result<(), String> {
@@ -249,6 +365,32 @@ mod tests {
             let err = CorData::parse(&format!("{h}\n1,0.5,0.5,1\n")).unwrap_err();
             assert!(err.0.contains("twice"), "{h}: {err}");
         }
+    }
+
+    #[test]
+    fn optional_columns_are_read_checked_and_written_back() {
+        let d = CorData::parse("tc,v0,sigma,e,tc_sigma\n3.1,1,0.01,0.8,0.05\n3,2,0.02,0.7,0.04\n")
+            .unwrap();
+        assert_eq!(d.sigma, Some(vec![0.01, 0.02]));
+        assert_eq!(d.tc, Some(vec![3.1, 3.0]));
+        assert_eq!(d.tc_sigma, Some(vec![0.05, 0.04]));
+        assert_eq!(CorData::parse(&d.to_csv()).unwrap(), d);
+        assert_eq!(CorData::parse("v0,e\n1,0.5\n").unwrap().sigma, None);
+        for (text, what) in [
+            ("v0,e,sigma\n1,0.5,0\n", "sigma = 0e0"),
+            ("v0,e,sigma\n1,0.5,-1\n", "sigma"),
+            ("v0,e,tc\n1,0.5,nan\n", "tc = NaN"),
+            ("v0,e,tc\n1,0.5,x\n", "tc 'x' is not a number"),
+            ("v0,e,tc_sigma\n1,0.5,1\n", "needs a column tc"),
+        ] {
+            let err = CorData::parse(text).unwrap_err();
+            assert!(err.0.contains(what), "{text}: {err}");
+        }
+        let err = CorData::new(vec![1.0], vec![0.5])
+            .unwrap()
+            .with_columns(None, None, Some(vec![1.0]))
+            .unwrap_err();
+        assert!(err.0.contains("without tc"), "{err}");
     }
 
     #[test]

@@ -11,12 +11,14 @@
 //! - [`cost`](mod@cost): J and the model's CoR curve, the speeds evaluated in parallel (rayon);
 //! - [`reparam`]: the smooth bijection ℝ⁶ → 𝓟 (or ℝ⁵ → 𝓟 ∩ {p = 1}) that lets an
 //!   unconstrained optimizer search inside the admissible set;
+//! - [`space`]: which parameters are fixed and which free within bounds (`--fix`, `--bounds`);
 //! - [`nelder_mead`]: the seeded multi-start Nelder–Mead minimization of J (argmin).
 
 pub mod cost;
 pub mod data;
 pub mod nelder_mead;
 pub mod reparam;
+pub mod space;
 
 pub use cost::{CostOptions, FitCurve, cost, model_curve};
 pub use data::{CorData, DataError};
