@@ -14,6 +14,7 @@
 pub mod arith;
 pub mod engines;
 pub mod fit;
+pub mod identify;
 pub mod models;
 pub mod observables;
 

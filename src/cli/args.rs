@@ -236,6 +236,26 @@ EXAMPLES:
     };
 }
 
+macro_rules! identify_examples {
+    () => {
+        "
+DATA: a CSV with the columns v0 and e, optionally sigma (the error of each e, overrides
+--error), tc (contact duration in units of T_c at v0 = 1 m/s) and tc_sigma.
+
+OUTPUT: the verdict (F proved empty, or its proved hull per parameter), the counts and volume
+shares of the feasible, infeasible and undecided boxes. JSON: {\"free\": [names], \"boxes\":
+[{\"lo\": [...], \"hi\": [...], \"status\": ...}], \"hull\": {...}, \"counts\": {...},
+\"seconds\": ...}, every box end rounded outward. Exit 0 when the paving is complete, 1 when the
+time limit or the box budget stopped it (what is reported is proved), 2 for bad input.
+
+EXAMPLES:
+    bwcl identify --model shc --data paper_repro/data/synthetic_dss.csv --error 0.02 \\
+        --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --bounds sigma_b=0.001..0.1,kappa=0.4..0.8
+    bwcl identify --model shc --data d.csv --error 0.02 --format json --plot paving.svg \\
+        --bounds B_b=0.8..1.6,Gamma_b=-1.6..1,kappa=0.5..0.7,sigma_b=0.004..0.06,n=1.1..1.4,p=1.1..1.4"
+    };
+}
+
 #[derive(Parser, Debug)]
 #[command(name = "bwcl", version, about = ABOUT, long_about = LONG_ABOUT)]
 pub struct Cli {
@@ -297,6 +317,91 @@ pub enum Command {
     Cost(CostArgs),
     /// Computer-assisted proofs over ranges of parameters (see `prove monotone --help`).
     Prove(ProveArgs),
+    /// Proved feasible sets of P* (set-membership identification): which base sets are
+    /// consistent with CoR data known to within ±E.
+    #[command(
+        long_about = "Set-membership identification: pave a box of the free base parameters into \
+                      boxes proved feasible (|e(𝓟(P*, v0_i)) − e_i| ≤ E_i for every data row and \
+                      every P* of the box), proved infeasible (no P* of the box satisfies every \
+                      row) and undecided at the resolution, with the interval Taylor engine: \
+                      mean-value forms from proved slopes, used as contractors before bisecting. \
+                      Prints the proved hull of the feasible set F per parameter (every P* \
+                      consistent with the data lies in it); an F proved empty falsifies the model \
+                      at that error. A column tc (contact duration, in units of T_c at v0 = 1 m/s) \
+                      adds |tc(P*, v0_i) − tc_i| ≤ T_i. Free parameters are those given --bounds; \
+                      the others are fixed by --fix or --base.",
+        after_long_help = identify_examples!()
+    )]
+    Identify(IdentifyArgs),
+}
+
+/// Output of `identify`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IdentifyFormat {
+    /// The verdict, the counts and the hull as text.
+    Table,
+    /// One JSON object: free, boxes, hull, counts, seconds, ….
+    Json,
+    /// One row per box: status and each free parameter's lo and hi.
+    Csv,
+}
+
+/// Most boxes `identify` processes.
+pub const MAX_BOXES: RangeInclusive<u64> = 1..=100_000_000;
+/// `identify --resolution`: the finest box side as a fraction 1/N of the starting box's.
+pub const RESOLUTION: RangeInclusive<u64> = 1..=1 << 20;
+
+#[derive(Args, Debug)]
+pub struct IdentifyArgs {
+    /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
+    #[arg(long, value_enum)]
+    pub model: ModelArg,
+    /// The measured data: CSV with the header v0,e (optional columns sigma, tc, tc_sigma).
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// Every e is known to within ±E (E > 0); a column sigma overrides it per row.
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = decimal)]
+    pub error: Option<f64>,
+    /// Every tc is known to within ±T (T > 0); a column tc_sigma overrides it per row.
+    #[arg(long, value_name = "T", allow_hyphen_values = true, value_parser = decimal)]
+    pub tc_error: Option<f64>,
+    /// Ignore a tc column (CoRs alone).
+    #[arg(long)]
+    pub no_tc: bool,
+    /// The box of the free parameters: name=lo..hi,… (names B_b, Gamma_b, kappa, sigma_b, n, p;
+    /// Γ_b, κ, σ_b accepted).
+    #[arg(long, value_name = "NAME=LO..HI,…", allow_hyphen_values = true)]
+    pub bounds: Option<String>,
+    /// Fixed parameters: name=value,….
+    #[arg(long, value_name = "NAME=VALUE,…", allow_hyphen_values = true)]
+    pub fix: Option<String>,
+    /// The values of the parameters neither bounded nor in --fix: a base set B,Γ,κ,σ_b,n,p.
+    #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
+    pub base: Option<String>,
+    /// The free parameters' names (a check: they must be the bounded ones).
+    #[arg(long, value_name = "NAMES", allow_hyphen_values = true)]
+    pub free: Option<String>,
+    /// Resolution: boxes are not split below 1/N of the starting box's side, 1 ≤ N ≤ 2^20.
+    #[arg(long, value_name = "N", default_value_t = 128, allow_hyphen_values = true,
+          value_parser = RangedU64ValueParser::<u64>::new().range(RESOLUTION))]
+    pub resolution: u64,
+    /// The wall-clock budget, 0 < S ≤ 86400 seconds [default: 300]: when it runs out, the boxes
+    /// not yet decided are reported undecided (everything reported stays proved; exit 1).
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = time_limit)]
+    pub time_limit: Option<f64>,
+    /// Most boxes processed, 1 ≤ K ≤ 10^8 (as the time limit, the rest is undecided).
+    #[arg(long, value_name = "K", default_value_t = 1_000_000, allow_hyphen_values = true,
+          value_parser = RangedU64ValueParser::<u64>::new().range(MAX_BOXES))]
+    pub max_boxes: u64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = IdentifyFormat::Table)]
+    pub format: IdentifyFormat,
+    /// Write the output to FILE instead of stdout (replaced whole, never half-written).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Draw the paving's 2-D projections (every pair of free parameters) to FILE.svg.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
 }
 
 /// Output of `fit` and `cost`.

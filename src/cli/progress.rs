@@ -83,6 +83,13 @@ impl Progress {
         }))
     }
 
+    /// Sets the settled share (0..1) and the message.
+    pub fn set(&self, share: f64, msg: String) {
+        self.bar
+            .set_position((share.clamp(0.0, 1.0) * PER_MILLE as f64) as u64);
+        self.bar.set_message(msg);
+    }
+
     /// Clears the bar (the result is printed next).
     pub fn finish(&self) {
         if let Ok(mut finished) = self.done.lock() {

@@ -457,6 +457,93 @@ pub fn prove_over_set_split(
     Ok((hull, pieces))
 }
 
+/// The derivatives of T_s and e in every ranged input over a set, with the hulls of T_s and e
+/// over it (the intersection of the runs' hulls): what a mean-value form about any point of
+/// the set needs (set-membership identification re-centres it on sub-sets, see
+/// `crate::identify`).
+#[derive(Clone, Debug)]
+pub struct SetSlopes {
+    pub ts: Interval,
+    pub e: Interval,
+    /// Per ranged input (in the order of [`Inputs::values`]): its index and, where the
+    /// crossing at T_s is transversal over the whole set, enclosures of dT_s/du and de/du.
+    pub slopes: Vec<(usize, Option<Slope>)>,
+}
+
+/// [`SetSlopes`] of model `kind` over `inputs` (at least one range): one run of the variational
+/// system per ranged input, in parallel. A run that fails fails the whole (the hull then comes
+/// from [`prove_over_set`]).
+pub fn slopes_over_set(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<SetSlopes, RigorError> {
+    inputs.nd(kind).map_err(param_error)?;
+    let vals = inputs.values();
+    let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
+    if ranges.is_empty() || ranges.len() > MAX_UNCERTAIN {
+        return Err(RigorError {
+            reason: format!(
+                "{} inputs are ranges; 1 to {MAX_UNCERTAIN} can be",
+                ranges.len()
+            ),
+            t: 0.0,
+            width: 0.0,
+        });
+    }
+    // the fewest parameter slots that hold the ranges (each slot is a state component)
+    let one = |d: usize| match (kind, ranges.len()) {
+        (ModelKind::Shc, 1) => variational::<_, 3, 1, 7>(Shc::new, kind, inputs, &ranges, d, opts),
+        (ModelKind::Shc, 2) => variational::<_, 3, 2, 8>(Shc::new, kind, inputs, &ranges, d, opts),
+        (ModelKind::Shc, 3..=6) => {
+            variational::<_, 3, 6, 12>(Shc::new, kind, inputs, &ranges, d, opts)
+        }
+        (ModelKind::Shc, _) => {
+            variational::<_, 3, 10, 16>(Shc::new, kind, inputs, &ranges, d, opts)
+        }
+        (ModelKind::Maxwell, 1) => {
+            variational::<_, 4, 1, 9>(Maxwell::new, kind, inputs, &ranges, d, opts)
+        }
+        (ModelKind::Maxwell, 2) => {
+            variational::<_, 4, 2, 10>(Maxwell::new, kind, inputs, &ranges, d, opts)
+        }
+        (ModelKind::Maxwell, 3..=6) => {
+            variational::<_, 4, 6, 14>(Maxwell::new, kind, inputs, &ranges, d, opts)
+        }
+        (ModelKind::Maxwell, _) => {
+            variational::<_, 4, 10, 18>(Maxwell::new, kind, inputs, &ranges, d, opts)
+        }
+    };
+    let runs = (0..ranges.len())
+        .into_par_iter()
+        .map(one)
+        .collect::<Result<Vec<_>, _>>()?;
+    let (mut ts, mut e) = (runs[0].ts, runs[0].e);
+    for r in &runs[1..] {
+        ts = ts.intersection(r.ts);
+        e = e.intersection(r.e);
+    }
+    Ok(SetSlopes {
+        ts,
+        e,
+        slopes: ranges
+            .iter()
+            .zip(&runs)
+            .map(|(&j, r)| (j, r.slope))
+            .collect(),
+    })
+}
+
+/// T_s and e proved at one point of the inputs (no range): the point engine.
+pub fn prove_at_point(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<(Interval, Interval), RigorError> {
+    let nd = inputs.nd(kind).map_err(param_error)?;
+    point(kind, nd, opts).map(|r| (r.ts, r.e))
+}
+
 /// Proved ∂T_s/∂u and ∂e/∂u of input `j` at the inputs' values (a point, or a range: then over
 /// all of it): one run of the variational system.
 pub fn sensitivity(

@@ -1,0 +1,452 @@
+//! The `identify` subcommand: proved feasible sets of P* (set-membership identification,
+//! [`bwcl::identify`]).
+
+use super::args::{IdentifyArgs, IdentifyFormat};
+use super::output::{self, outward};
+use super::progress::Progress;
+use super::{CliError, EXIT_FAILED, EXIT_OK, note};
+use crate::cli::fit::read_data;
+use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
+use bwcl::identify::setup::{Spec, problem};
+use bwcl::models::ModelKind;
+use bwcl::observables::decimal::Rounding;
+use inari::Interval;
+use serde::Serialize;
+use serde_json::value::RawValue;
+use std::collections::{BTreeMap, HashSet};
+use std::fmt::Write as _;
+
+/// A bound rounded outward as a JSON number (null when not finite).
+fn bound(x: f64, dir: Rounding) -> Box<RawValue> {
+    let mut t = if x.is_finite() {
+        outward(x, dir)
+    } else {
+        "null".into()
+    };
+    if x.is_finite() && !t.contains(['.', 'e']) {
+        t.push_str(".0");
+    }
+    RawValue::from_string(t).expect("a JSON number")
+}
+
+#[derive(Serialize)]
+struct BoxOut {
+    lo: Vec<Box<RawValue>>,
+    hi: Vec<Box<RawValue>>,
+    status: Status,
+}
+
+#[derive(Serialize)]
+struct Counts {
+    feasible: usize,
+    infeasible: usize,
+    undecided: usize,
+}
+
+#[derive(Serialize)]
+struct Shares {
+    feasible: f64,
+    infeasible: f64,
+    undecided: f64,
+}
+
+#[derive(Serialize)]
+struct IdentifyOut<'a> {
+    model: &'static str,
+    free: Vec<&'static str>,
+    /// The starting box (outward), per free parameter.
+    #[serde(rename = "box")]
+    start: BTreeMap<&'static str, [Box<RawValue>; 2]>,
+    rows: usize,
+    /// What was proved, in words.
+    verdict: String,
+    /// F proved empty: the model is falsified by the data at the given errors.
+    empty: bool,
+    /// The outer hull of F per free parameter (feasible ∪ undecided boxes); null when empty.
+    hull: Option<BTreeMap<&'static str, [Box<RawValue>; 2]>>,
+    /// The hull of the boxes proved feasible (an inner estimate of F's hull); null when none.
+    feasible_hull: Option<BTreeMap<&'static str, [Box<RawValue>; 2]>>,
+    counts: Counts,
+    /// Shares of the starting box's volume (each side relative to the box's).
+    shares: Shares,
+    complete: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stopped: Option<&'a str>,
+    processed: usize,
+    resolution: u64,
+    seconds: f64,
+    boxes: Vec<BoxOut>,
+}
+
+fn named(free: &[&'static str], h: &[(f64, f64)]) -> BTreeMap<&'static str, [Box<RawValue>; 2]> {
+    free.iter()
+        .zip(h)
+        .map(|(n, &(a, b))| (*n, [bound(a, Rounding::Down), bound(b, Rounding::Up)]))
+        .collect()
+}
+
+/// The verdict line.
+fn verdict(p: &Paving, free: &[&str]) -> String {
+    match p.hull() {
+        None => "proved: no P* in the box is consistent with the data (F is empty: the model is \
+                 falsified by the data at these errors)"
+            .into(),
+        Some(h) => {
+            let parts: Vec<String> = free
+                .iter()
+                .zip(&h)
+                .map(|(n, &(a, b))| {
+                    format!(
+                        "{n} ∈ [{}, {}]",
+                        outward(a, Rounding::Down),
+                        outward(b, Rounding::Up)
+                    )
+                })
+                .collect();
+            let feasible = if p.counts()[0] > 0 {
+                "some P* are proved consistent"
+            } else {
+                "no box is proved feasible at this resolution"
+            };
+            format!(
+                "proved: every P* in the box consistent with the data has {}; {feasible}",
+                parts.join(", ")
+            )
+        }
+    }
+}
+
+pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
+    let kind = ModelKind::from(a.model);
+    let data = read_data(&a.data)?;
+    let spec = Spec {
+        base: a.base.as_deref(),
+        fix: a.fix.as_deref(),
+        bounds: a.bounds.as_deref(),
+        free: a.free.as_deref(),
+        error: a.error,
+        tc_error: a.tc_error,
+        no_tc: a.no_tc,
+    };
+    let (prob, start) = problem(kind, &data, &spec).map_err(CliError::Input)?;
+    let mut opts = Options::new(&start, a.resolution as f64);
+    opts.max_boxes = a.max_boxes as usize;
+    opts.taylor.deadline = Some(super::input::deadline(a.time_limit));
+    opts.slope_taylor.deadline = opts.taylor.deadline;
+    if let Some(t) = std::env::var("BWCL_ID_TOL")
+        .ok()
+        .and_then(|t| t.parse().ok())
+    {
+        opts.slope_taylor.tol = t;
+    }
+    if let Some(t) = std::env::var("BWCL_ID_ORDER")
+        .ok()
+        .and_then(|t| t.parse().ok())
+    {
+        opts.slope_taylor.order = t;
+    }
+    if let Some(t) = std::env::var("BWCL_ID_WIDTH")
+        .ok()
+        .and_then(|t| t.parse().ok())
+    {
+        opts.slope_taylor.max_width = t;
+    }
+    if let Some(t) = std::env::var("BWCL_ID_VOL")
+        .ok()
+        .and_then(|t| t.parse().ok())
+    {
+        opts.slope_volume = t;
+    }
+    if let Some(t) = std::env::var("BWCL_ID_REFRESH")
+        .ok()
+        .and_then(|t| t.parse().ok())
+    {
+        opts.refresh = t;
+    }
+    let bar = Progress::range("identify", a.time_limit);
+    let cb = |p: bwcl::identify::Progress| {
+        bar.set(
+            1.0 - p.undecided,
+            format!(
+                "{:.1} % of the box decided, {} boxes done, {} waiting",
+                100.0 * (1.0 - p.undecided),
+                p.processed,
+                p.queued
+            ),
+        )
+    };
+    let paving = pave(&prob, &start, &opts, Some(&cb));
+    bar.finish();
+    let free = prob.space.free_names();
+    let [nf, ni, nu] = paving.counts();
+    let [sf, si, su] = paving.shares(&start);
+    let verdict = verdict(&paving, &free);
+    let hull = paving.hull();
+    let bytes = match a.format {
+        IdentifyFormat::Json => {
+            let out = IdentifyOut {
+                model: kind.name(),
+                free: free.clone(),
+                start: named(
+                    &free,
+                    &start.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
+                ),
+                rows: prob.rows.len(),
+                verdict: verdict.clone(),
+                empty: hull.is_none(),
+                hull: hull.as_ref().map(|h| named(&free, h)),
+                feasible_hull: paving.feasible_hull().map(|h| named(&free, &h)),
+                counts: Counts {
+                    feasible: nf,
+                    infeasible: ni,
+                    undecided: nu,
+                },
+                shares: Shares {
+                    feasible: sf,
+                    infeasible: si,
+                    undecided: su,
+                },
+                complete: paving.stopped.is_none(),
+                stopped: paving.stopped.as_deref(),
+                processed: paving.processed,
+                resolution: a.resolution,
+                seconds: paving.seconds,
+                boxes: paving.boxes.iter().map(box_out).collect(),
+            };
+            let mut b = serde_json::to_vec_pretty(&out)
+                .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
+            b.push(b'\n');
+            b
+        }
+        IdentifyFormat::Csv => {
+            let mut head = vec!["status".to_string()];
+            for n in &free {
+                head.push(format!("{n}_lo"));
+                head.push(format!("{n}_hi"));
+            }
+            let head: Vec<&str> = head.iter().map(String::as_str).collect();
+            let rows = paving.boxes.iter().map(|b| {
+                let mut r = vec![status_name(b.status).to_string()];
+                for (&lo, &hi) in b.lo.iter().zip(&b.hi) {
+                    r.push(outward(lo, Rounding::Down));
+                    r.push(outward(hi, Rounding::Up));
+                }
+                r
+            });
+            output::csv(&head, rows)?
+        }
+        IdentifyFormat::Table => {
+            let mut s = format!(
+                "model {}: {} data rows, free {} (resolution 1/{})\n{verdict}\n\n",
+                kind.name(),
+                prob.rows.len(),
+                free.join(", "),
+                a.resolution
+            );
+            let rows: Vec<Vec<String>> = [
+                ("feasible", nf, sf),
+                ("infeasible", ni, si),
+                ("undecided", nu, su),
+            ]
+            .iter()
+            .map(|(n, c, v)| vec![n.to_string(), c.to_string(), format!("{:.2} %", 100.0 * v)])
+            .collect();
+            s.push_str(&output::table(
+                &["boxes", "count", "share of the box"],
+                &rows,
+            ));
+            if let Some(h) = &hull {
+                s.push('\n');
+                let fh = paving.feasible_hull();
+                let rows: Vec<Vec<String>> = free
+                    .iter()
+                    .enumerate()
+                    .map(|(j, n)| {
+                        vec![
+                            n.to_string(),
+                            format!(
+                                "{}..{}",
+                                outward(start[j].inf(), Rounding::Down),
+                                outward(start[j].sup(), Rounding::Up)
+                            ),
+                            format!(
+                                "{}..{}",
+                                outward(h[j].0, Rounding::Down),
+                                outward(h[j].1, Rounding::Up)
+                            ),
+                            fh.as_ref().map_or("-".into(), |f| {
+                                format!(
+                                    "{}..{}",
+                                    outward(f[j].0, Rounding::Down),
+                                    outward(f[j].1, Rounding::Up)
+                                )
+                            }),
+                        ]
+                    })
+                    .collect();
+                s.push_str(&output::table(
+                    &[
+                        "parameter",
+                        "box",
+                        "hull of F (proved)",
+                        "hull of the feasible boxes",
+                    ],
+                    &rows,
+                ));
+            }
+            let _ = writeln!(
+                s,
+                "\n{} boxes processed in {:.1} s{}",
+                paving.processed,
+                paving.seconds,
+                paving
+                    .stopped
+                    .as_ref()
+                    .map(|r| format!("; stopped: {r} (the rest is undecided)"))
+                    .unwrap_or_default()
+            );
+            s.into_bytes()
+        }
+    };
+    if let Some(p) = &a.plot {
+        output::emit(Some(p), svg(&paving, &start, &free).as_bytes())?;
+    }
+    output::emit(a.out.as_deref(), &bytes)?;
+    match &paving.stopped {
+        None => Ok(EXIT_OK),
+        Some(r) => {
+            note(&format!(
+                "bwcl: identify: {r}: {:.2} % of the box is undecided (what is reported is proved)",
+                100.0 * su
+            ));
+            Ok(EXIT_FAILED)
+        }
+    }
+}
+
+fn status_name(s: Status) -> &'static str {
+    match s {
+        Status::Feasible => "feasible",
+        Status::Infeasible => "infeasible",
+        Status::Undecided => "undecided",
+    }
+}
+
+fn box_out(b: &Leaf) -> BoxOut {
+    BoxOut {
+        lo: b.lo.iter().map(|&x| bound(x, Rounding::Down)).collect(),
+        hi: b.hi.iter().map(|&x| bound(x, Rounding::Up)).collect(),
+        status: b.status,
+    }
+}
+
+/// The paving's 2-D projections as SVG: one panel per pair of free parameters (one panel for
+/// one parameter), infeasible boxes (grey) only for two free parameters, undecided (orange)
+/// and feasible (green) drawn over them.
+pub fn svg(p: &Paving, start: &[Interval], free: &[&str]) -> String {
+    const S: f64 = 260.0;
+    const M: f64 = 50.0;
+    let dim = start.len();
+    let pairs: Vec<(usize, usize)> = if dim == 1 {
+        vec![(0, 0)]
+    } else {
+        (0..dim)
+            .flat_map(|i| (i + 1..dim).map(move |j| (i, j)))
+            .collect()
+    };
+    let cols = (pairs.len() as f64).sqrt().ceil() as usize;
+    let rows = pairs.len().div_ceil(cols);
+    let (w, h) = (cols as f64 * (S + M) + M, rows as f64 * (S + M) + M);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    for (k, &(i, j)) in pairs.iter().enumerate() {
+        let (ox, oy) = (
+            M + (k % cols) as f64 * (S + M),
+            M / 2.0 + (k / cols) as f64 * (S + M),
+        );
+        let x = |v: f64| ox + S * (v - start[i].inf()) / start[i].wid();
+        let y = |v: f64| {
+            if i == j {
+                oy
+            } else {
+                oy + S - S * (v - start[j].inf()) / start[j].wid()
+            }
+        };
+        let _ = writeln!(
+            s,
+            "<rect x=\"{ox}\" y=\"{oy}\" width=\"{S}\" height=\"{S}\" fill=\"none\" stroke=\"black\"/>"
+        );
+        let mut seen = HashSet::new();
+        for status in [Status::Infeasible, Status::Undecided, Status::Feasible] {
+            if status == Status::Infeasible && dim != 2 {
+                continue;
+            }
+            let fill = match status {
+                Status::Infeasible => "#d9d9d9",
+                Status::Undecided => "#f4a341",
+                Status::Feasible => "#3c9b4b",
+            };
+            for b in p.boxes.iter().filter(|b| b.status == status) {
+                let (x0, x1) = (x(b.lo[i]), x(b.hi[i]));
+                let (y0, y1) = if i == j {
+                    (oy, oy + S)
+                } else {
+                    (y(b.hi[j]), y(b.lo[j]))
+                };
+                let key = (
+                    status as u8,
+                    (x0 * 2.0) as i64,
+                    (x1 * 2.0) as i64,
+                    (y0 * 2.0) as i64,
+                    (y1 * 2.0) as i64,
+                );
+                if !seen.insert(key) {
+                    continue;
+                }
+                let _ = writeln!(
+                    s,
+                    "<rect x=\"{x0:.2}\" y=\"{y0:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{fill}\"/>",
+                    (x1 - x0).max(0.3),
+                    (y1 - y0).max(0.3)
+                );
+            }
+        }
+        let lab = |v: f64| format!("{v:.4}");
+        let _ = writeln!(
+            s,
+            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\
+             <text x=\"{ox}\" y=\"{}\">{}</text><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>",
+            ox + S / 2.0,
+            oy + S + 28.0,
+            free[i],
+            oy + S + 14.0,
+            lab(start[i].inf()),
+            ox + S,
+            oy + S + 14.0,
+            lab(start[i].sup())
+        );
+        if i != j {
+            let _ = writeln!(
+                s,
+                "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\
+                 <text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\
+                 <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{}</text>",
+                ox - 3.0,
+                oy + S,
+                lab(start[j].inf()),
+                ox - 3.0,
+                oy + 10.0,
+                lab(start[j].sup()),
+                ox - 38.0,
+                oy + S / 2.0,
+                ox - 38.0,
+                oy + S / 2.0,
+                free[j]
+            );
+        }
+    }
+    s.push_str("</svg>\n");
+    s
+}

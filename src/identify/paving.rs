@@ -1,0 +1,690 @@
+//! The paving of a box of free parameters into boxes proved feasible, proved infeasible and
+//! undecided (set inversion via interval analysis, SIVIA, with contractors).
+//!
+//! Each box U carries the rows whose constraints are not yet settled on it, and per row the
+//! slopes proved over an ancestor box ([`RowSlopes`]). Processing U:
+//!
+//! 1. 𝓟 contracts it: Γ_b ∈ [−sup B_b, sup B_b], B_b ≥ min |Γ_b|; the cut slabs hold no point
+//!    of 𝓟 (they are reported infeasible: F ⊂ 𝓟 by definition). A box that still crosses
+//!    |Γ_b| = B_b cannot be given to the engines: it is split (undecided at the resolution).
+//! 2. For every open row, its observables are enclosed over U by the mean-value form about
+//!    U's centre ([`super::form`]): proved outside the outer target → U is infeasible; inside
+//!    the inner target → the constraint holds on all of U and the row is dropped for U's
+//!    sub-boxes; else the form contracts U. Contraction repeats (at a new centre) while it
+//!    removes at least a fifth of some side.
+//! 3. No open row left: U is feasible. Else U is bisected along its side that is widest
+//!    relative to the starting box, until the sides reach the resolution (then undecided).
+//!
+//! Work order: half of the boxes by volume (largest first: the boundary of F is resolved
+//! uniformly), the other half round-robin by the lowest lower end and the highest upper end of
+//! each coordinate (the hull of F converges first). Boxes are processed in parallel batches
+//! (rayon), the rows of a box too. A time limit or a box budget stops the work: what is left
+//! is reported undecided, and everything reported is still proved.
+
+use super::form::{RowSlopes, centre_of, contract, enclose, tc_factor};
+use super::problem::{Problem, Target};
+use crate::engines::taylor::TaylorOptions;
+use crate::models::NdParams;
+use crate::observables::sets::{Inputs, prove_at_point, slopes_over_set};
+use inari::Interval;
+use rayon::prelude::*;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// What is proved about a box.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Every constraint holds at every point of the box (and the box is inside 𝓟).
+    Feasible,
+    /// No point of the box satisfies every constraint (or the box is outside 𝓟).
+    Infeasible,
+    /// Neither was proved at the resolution (or within the budget).
+    Undecided,
+}
+
+/// A box of the paving (free coordinates, in the order of `Space::free`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Leaf {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    pub status: Status,
+}
+
+/// Settings of a paving.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Per free coordinate: a box is not split along it once its side is this narrow.
+    pub min_width: Vec<f64>,
+    /// The interval engine's settings for the point runs at the boxes' centres; its deadline
+    /// is the paving's time limit.
+    pub taylor: TaylorOptions,
+    /// Its settings for the slopes over boxes (the variational runs): a low order and a loose
+    /// local tolerance (the forms need 1e-6, not 1e-13), and a wide give-up width (the
+    /// derivatives' enclosures over a box are wide).
+    pub slope_taylor: TaylorOptions,
+    /// Slopes are first tried on boxes of at most this volume relative to the starting box
+    /// (over wider boxes the variational runs wrap and fail, at a cost).
+    pub slope_volume: f64,
+    /// Most seconds one row's slopes may take on one box (a run that wraps slowly is given up
+    /// and tried again on a smaller box).
+    pub slope_seconds: f64,
+    /// Most boxes processed (each one point run per open row, and slopes now and then).
+    pub max_boxes: usize,
+    /// Slopes are proved anew on a box once its sides are on average 2^refresh times narrower
+    /// than those of the box they were proved on (∞: never; the forms' widths shrink with the
+    /// boxes anyway, only the slopes' own width is kept).
+    pub refresh: f64,
+    /// Most contraction rounds per box.
+    pub rounds: usize,
+}
+
+impl Options {
+    /// Resolution `1/div` of the sides of `start`, the engine's default settings.
+    pub fn new(start: &[Interval], div: f64) -> Self {
+        let slope_taylor = TaylorOptions {
+            tol: 1e-12,
+            ..TaylorOptions::default()
+        };
+        Self {
+            min_width: start.iter().map(|x| x.wid() / div).collect(),
+            taylor: TaylorOptions::default(),
+            slope_taylor,
+            slope_volume: 1.0,
+            slope_seconds: 0.5,
+            max_boxes: 1_000_000,
+            refresh: f64::INFINITY,
+            rounds: 3,
+        }
+    }
+}
+
+/// Progress of a paving: boxes processed, boxes waiting, and the undecided share of the
+/// starting box's volume (the waiting boxes included).
+#[derive(Clone, Copy, Debug)]
+pub struct Progress {
+    pub processed: usize,
+    pub queued: usize,
+    pub undecided: f64,
+}
+
+/// The outcome of a paving.
+#[derive(Clone, Debug)]
+pub struct Paving {
+    pub boxes: Vec<Leaf>,
+    /// Boxes processed.
+    pub processed: usize,
+    /// The work stopped early (time limit or box budget): the reason.
+    pub stopped: Option<String>,
+    pub seconds: f64,
+}
+
+impl Paving {
+    /// The outer hull of F per coordinate: the hull of the feasible and undecided boxes
+    /// (`None`: F is proved empty).
+    pub fn hull(&self) -> Option<Vec<(f64, f64)>> {
+        hull_of(self.boxes.iter().filter(|b| b.status != Status::Infeasible))
+    }
+
+    /// The hull of the boxes proved feasible (`None`: none).
+    pub fn feasible_hull(&self) -> Option<Vec<(f64, f64)>> {
+        hull_of(self.boxes.iter().filter(|b| b.status == Status::Feasible))
+    }
+
+    /// Number of boxes of each status (feasible, infeasible, undecided).
+    pub fn counts(&self) -> [usize; 3] {
+        let c = |s| self.boxes.iter().filter(|b| b.status == s).count();
+        [
+            c(Status::Feasible),
+            c(Status::Infeasible),
+            c(Status::Undecided),
+        ]
+    }
+
+    /// Share of the starting box's volume of each status (relative volumes, each side divided by
+    /// the starting box's).
+    pub fn shares(&self, start: &[Interval]) -> [f64; 3] {
+        let mut v = [0.0; 3];
+        for b in &self.boxes {
+            let k = b.status as usize;
+            v[k] += rel_volume(&b.lo, &b.hi, start);
+        }
+        v
+    }
+}
+
+fn hull_of<'a>(mut it: impl Iterator<Item = &'a Leaf>) -> Option<Vec<(f64, f64)>> {
+    let first = it.next()?;
+    let mut h: Vec<(f64, f64)> = first
+        .lo
+        .iter()
+        .zip(&first.hi)
+        .map(|(&a, &b)| (a, b))
+        .collect();
+    for b in it {
+        for (j, hj) in h.iter_mut().enumerate() {
+            hj.0 = hj.0.min(b.lo[j]);
+            hj.1 = hj.1.max(b.hi[j]);
+        }
+    }
+    Some(h)
+}
+
+/// The volume of a box relative to the starting box's.
+fn volume(u: &[Interval], start: &[Interval]) -> f64 {
+    u.iter()
+        .zip(start)
+        .map(|(x, s)| {
+            if s.wid() > 0.0 {
+                x.wid() / s.wid()
+            } else {
+                1.0
+            }
+        })
+        .product()
+}
+
+fn rel_volume(lo: &[f64], hi: &[f64], start: &[Interval]) -> f64 {
+    lo.iter()
+        .zip(hi)
+        .zip(start)
+        .map(|((a, b), s)| {
+            if s.wid() > 0.0 {
+                (b - a) / s.wid()
+            } else {
+                1.0
+            }
+        })
+        .product()
+}
+
+/// One open row of a box: which of its observables are still open, and its slopes.
+#[derive(Clone, Debug)]
+struct Open {
+    row: usize,
+    e: bool,
+    tc: bool,
+    slopes: Option<Arc<RowSlopes>>,
+    /// The relative volume of the last box on which the slopes could not be proved: they are
+    /// tried again on boxes at most a quarter of it.
+    failed: f64,
+}
+
+#[derive(Clone, Debug)]
+struct Node {
+    u: Vec<Interval>,
+    open: Vec<Open>,
+}
+
+/// What processing a box gives: boxes to report and boxes to process.
+#[derive(Default)]
+struct Outcome {
+    leaves: Vec<Leaf>,
+    children: Vec<Node>,
+}
+
+fn leaf(u: &[Interval], status: Status) -> Leaf {
+    Leaf {
+        lo: u.iter().map(|x| x.inf()).collect(),
+        hi: u.iter().map(|x| x.sup()).collect(),
+        status,
+    }
+}
+
+/// The boxes of `u` outside `inner` (⊂ u): at most two slabs per coordinate.
+fn difference(u: &[Interval], inner: &[Interval]) -> Vec<Vec<Interval>> {
+    let mut out = Vec::new();
+    let mut rest = u.to_vec();
+    for j in 0..u.len() {
+        let (a, b) = (rest[j].inf(), rest[j].sup());
+        let (c, d) = (inner[j].inf(), inner[j].sup());
+        if a < c {
+            let mut s = rest.clone();
+            s[j] = Interval::try_from((a, c)).expect("ordered");
+            out.push(s);
+        }
+        if d < b {
+            let mut s = rest.clone();
+            s[j] = Interval::try_from((d, b)).expect("ordered");
+            out.push(s);
+        }
+        rest[j] = inner[j];
+    }
+    out
+}
+
+/// One observable of a row: open, its centre value, slopes, hull over the slopes' box, target.
+type Check<'a> = (
+    bool,
+    Interval,
+    Option<&'a Vec<Interval>>,
+    Interval,
+    Option<Target>,
+);
+
+/// A row's verdict on a box.
+enum Verdict {
+    /// Proved violated on the whole box.
+    Violated,
+    /// The still-open observables, the contracted box (⊂ u), and the slopes used.
+    Open {
+        e: bool,
+        tc: bool,
+        u: Vec<Interval>,
+        slopes: Option<Arc<RowSlopes>>,
+        failed: f64,
+    },
+}
+
+struct Ctx<'a> {
+    problem: &'a Problem,
+    free: Vec<usize>,
+    opts: &'a Options,
+    start: &'a [Interval],
+}
+
+impl Ctx<'_> {
+    fn inputs(&self, u: &[Interval], v0: Interval) -> Inputs<Interval> {
+        let [b, gamma, kappa, sigma, n, p] = self.problem.base(u);
+        Inputs::Base {
+            base: NdParams {
+                b,
+                gamma,
+                kappa,
+                sigma,
+                n,
+                p,
+            },
+            v0,
+        }
+    }
+
+    /// Whether every point of the box is in 𝓟 (|Γ_b| < B_b strictly; the other conditions
+    /// hold on the whole starting box).
+    fn inside(&self, u: &[Interval]) -> bool {
+        let base = self.problem.base(u);
+        let (b, g) = (base[0], base[1]);
+        g.sup() < b.inf() && -g.inf() < b.inf()
+    }
+
+    /// 𝓟's contraction of step 1 (`None`: no point of the box is in 𝓟).
+    fn admissible(&self, u: &[Interval]) -> Option<Vec<Interval>> {
+        let (ib, ig) = (
+            self.free.iter().position(|&f| f == 0),
+            self.free.iter().position(|&f| f == 1),
+        );
+        let base = self.problem.base(u);
+        let (b, g) = (base[0], base[1]);
+        let mut out = u.to_vec();
+        if let Some(j) = ig {
+            let lim = Interval::try_from((-b.sup(), b.sup())).ok()?;
+            out[j] = out[j].intersection(lim);
+            if out[j].is_empty() {
+                return None;
+            }
+        }
+        let g = ig.map_or(g, |j| out[j]);
+        if let Some(j) = ib {
+            let min_abs = if g.contains(0.0) { 0.0 } else { g.mig() };
+            out[j] = out[j].intersection(Interval::try_from((min_abs, f64::INFINITY)).ok()?);
+            if out[j].is_empty() {
+                return None;
+            }
+        } else if g.mig() >= b.sup() && !g.contains(0.0) {
+            return None;
+        }
+        Some(out)
+    }
+
+    fn stale(&self, s: &RowSlopes, u: &[Interval]) -> bool {
+        // hulls alone (no derivative over the box) do not shrink with the sub-boxes
+        if s.e.is_none() || (s.tc.is_none() && self.problem.rows.iter().any(|r| r.tc.is_some())) {
+            return s.widths.iter().zip(u).any(|(w, x)| x.wid() < *w);
+        }
+        let k: f64 = s
+            .widths
+            .iter()
+            .zip(u)
+            .filter(|(w, _)| **w > 0.0)
+            .map(|(w, x)| (w / x.wid().max(f64::MIN_POSITIVE)).log2())
+            .sum();
+        k >= self.opts.refresh * u.len() as f64
+    }
+
+    /// The verdict of row `o` on box `u` about centre `c`.
+    fn row(&self, o: &Open, u: &[Interval], c: &[Interval]) -> Verdict {
+        let row = &self.problem.rows[o.row];
+        let mut slopes = o.slopes.clone();
+        let mut failed = o.failed;
+        let vol = volume(u, self.start);
+        let due = match &slopes {
+            None => vol <= self.opts.slope_volume && vol <= o.failed / 4.0,
+            Some(s) => self.stale(s, u),
+        };
+        if due {
+            let base = self.problem.base(u);
+            let t = Instant::now();
+            let mut so = self.opts.slope_taylor.clone();
+            let own = Instant::now() + std::time::Duration::from_secs_f64(self.opts.slope_seconds);
+            so.deadline = Some(so.deadline.map_or(own, |d| d.min(own)));
+            let r = slopes_over_set(self.problem.kind, &self.inputs(u, row.v0), &so);
+            if trace() {
+                eprintln!(
+                    "slopes row {} box {:?}: {:.3} s {}",
+                    o.row,
+                    u.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
+                    t.elapsed().as_secs_f64(),
+                    r.as_ref()
+                        .map(|_| "ok".to_string())
+                        .unwrap_or_else(|e| e.reason.clone())
+                );
+            }
+            match r {
+                Ok(s) => {
+                    slopes = Some(Arc::new(RowSlopes::new(&s, u, &self.free, base[5], row.v0)))
+                }
+                Err(_) => failed = vol,
+            }
+        }
+        let keep = |slopes| Verdict::Open {
+            e: o.e,
+            tc: o.tc,
+            u: u.to_vec(),
+            slopes,
+            failed,
+        };
+        let Some(s) = slopes else {
+            return keep(None);
+        };
+        let t = Instant::now();
+        let r = prove_at_point(
+            self.problem.kind,
+            &self.inputs(c, row.v0),
+            &self.opts.taylor,
+        );
+        if trace() {
+            eprintln!(
+                "point row {} {:.3} s {}",
+                o.row,
+                t.elapsed().as_secs_f64(),
+                r.as_ref()
+                    .map(|_| "ok".to_string())
+                    .unwrap_or_else(|e| e.reason.clone())
+            );
+        }
+        let Ok((ts_c, e_c)) = r else {
+            return keep(Some(s));
+        };
+        let mut out = u.to_vec();
+        let mut open = (o.e, o.tc);
+        // e, then tc: each enclosed, tested and used to contract
+        let p_c = self.problem.base(c)[5];
+        let tc_c = ts_c * tc_factor(row.v0, p_c).0;
+        let checks: [Check; 2] = [
+            (o.e, e_c, s.e.as_ref(), s.e_hull, Some(row.e)),
+            (o.tc, tc_c, s.tc.as_ref(), s.tc_hull, row.tc),
+        ];
+        for (k, (is_open, yc, g, hull, target)) in checks.into_iter().enumerate() {
+            let Some(target) = target.filter(|_| is_open) else {
+                continue;
+            };
+            let y = match g {
+                Some(g) => enclose(yc, g, &out, c, hull),
+                None => hull,
+            };
+            let outer = target.outer();
+            if y.is_empty() || y.disjoint(outer) {
+                return Verdict::Violated;
+            }
+            if target.inner().is_some_and(|i| y.subset(i)) {
+                if k == 0 {
+                    open.0 = false;
+                } else {
+                    open.1 = false;
+                }
+                continue;
+            }
+            if let Some(g) = g {
+                match contract(yc, g, &out, c, outer) {
+                    Some(k) => out = k,
+                    None => return Verdict::Violated,
+                }
+            }
+        }
+        Verdict::Open {
+            e: open.0,
+            tc: open.1,
+            u: out,
+            slopes: Some(s),
+            failed,
+        }
+    }
+
+    fn process(&self, node: Node, start: &[Interval]) -> Outcome {
+        let mut out = Outcome::default();
+        let Some(mut u) = self.admissible(&node.u) else {
+            out.leaves.push(leaf(&node.u, Status::Infeasible));
+            return out;
+        };
+        for s in difference(&node.u, &u) {
+            out.leaves.push(leaf(&s, Status::Infeasible));
+        }
+        let mut open = node.open;
+        if self.inside(&u) {
+            for _ in 0..self.opts.rounds.max(1) {
+                let c = centre_of(&u);
+                let verdicts: Vec<Verdict> = open.par_iter().map(|o| self.row(o, &u, &c)).collect();
+                let mut next = u.clone();
+                let mut still = Vec::new();
+                for (o, v) in open.iter().zip(verdicts) {
+                    match v {
+                        Verdict::Violated => {
+                            out.leaves.push(leaf(&u, Status::Infeasible));
+                            return out;
+                        }
+                        Verdict::Open {
+                            e,
+                            tc,
+                            u: k,
+                            slopes,
+                            failed,
+                        } => {
+                            for (x, y) in next.iter_mut().zip(&k) {
+                                *x = x.intersection(*y);
+                            }
+                            if e || tc {
+                                still.push(Open {
+                                    row: o.row,
+                                    e,
+                                    tc,
+                                    slopes,
+                                    failed,
+                                });
+                            }
+                        }
+                    }
+                }
+                open = still;
+                if next.iter().any(|x| x.is_empty()) {
+                    out.leaves.push(leaf(&u, Status::Infeasible));
+                    return out;
+                }
+                for s in difference(&u, &next) {
+                    out.leaves.push(leaf(&s, Status::Infeasible));
+                }
+                let shrunk = u.iter().zip(&next).any(|(a, b)| b.wid() < 0.8 * a.wid());
+                u = next;
+                if open.is_empty() || !shrunk {
+                    break;
+                }
+            }
+            if open.is_empty() && self.inside(&u) {
+                out.leaves.push(leaf(&u, Status::Feasible));
+                return out;
+            }
+        }
+        // bisect the side widest relative to the starting box, above the resolution
+        let j = (0..u.len())
+            .filter(|&j| u[j].wid() > self.opts.min_width[j])
+            .max_by(|&a, &b| {
+                let r = |j: usize| u[j].wid() / start[j].wid();
+                r(a).total_cmp(&r(b))
+            });
+        let Some(j) = j else {
+            out.leaves.push(leaf(&u, Status::Undecided));
+            return out;
+        };
+        let m = u[j].mid();
+        for (a, b) in [(u[j].inf(), m), (m, u[j].sup())] {
+            let mut v = u.clone();
+            v[j] = Interval::try_from((a, b)).expect("ordered halves");
+            out.children.push(Node {
+                u: v,
+                open: open.clone(),
+            });
+        }
+        out
+    }
+}
+
+fn trace() -> bool {
+    std::env::var_os("BWCL_TRACE_IDENTIFY").is_some()
+}
+
+/// A total order on f64 keys for the work queues.
+#[derive(Clone, Copy, PartialEq)]
+struct Key(f64);
+impl Eq for Key {}
+impl PartialOrd for Key {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Key {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.0.total_cmp(&o.0)
+    }
+}
+
+/// Paves `start` (a box of the free parameters of `problem`, in the order of `Space::free`).
+pub fn pave(
+    problem: &Problem,
+    start: &[Interval],
+    opts: &Options,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Paving {
+    let t0 = Instant::now();
+    let ctx = Ctx {
+        problem,
+        free: problem.space.free(),
+        opts,
+        start,
+    };
+    let dim = start.len();
+    let open = (0..problem.rows.len())
+        .map(|row| Open {
+            row,
+            e: true,
+            tc: problem.rows[row].tc.is_some(),
+            slopes: None,
+            failed: f64::INFINITY,
+        })
+        .collect();
+    let mut nodes: Vec<Option<Node>> = vec![Some(Node {
+        u: start.to_vec(),
+        open,
+    })];
+    // heap 0: volume; heaps 1 + 2j, 2 + 2j: lowest lower end, highest upper end of coordinate j
+    let mut heaps: Vec<BinaryHeap<(Key, usize)>> =
+        (0..1 + 2 * dim).map(|_| BinaryHeap::new()).collect();
+    let keys = |u: &[Interval]| -> Vec<f64> {
+        let mut k = vec![
+            u.iter()
+                .zip(start)
+                .map(|(x, s)| x.wid() / s.wid())
+                .product(),
+        ];
+        for x in u {
+            k.push(-x.inf());
+            k.push(x.sup());
+        }
+        k
+    };
+    let push = |heaps: &mut Vec<BinaryHeap<(Key, usize)>>, id: usize, u: &[Interval]| {
+        for (h, k) in heaps.iter_mut().zip(keys(u)) {
+            h.push((Key(k), id));
+        }
+    };
+    push(&mut heaps, 0, start);
+    let mut waiting = 1usize;
+    let mut leaves = Vec::new();
+    let mut processed = 0usize;
+    let mut turn = 0usize;
+    let mut stopped = None;
+    let batch = 2 * rayon::current_num_threads().max(1);
+    while waiting > 0 {
+        if opts.taylor.out_of_time() {
+            stopped = Some("the time limit was reached".to_string());
+            break;
+        }
+        if processed >= opts.max_boxes {
+            stopped = Some(format!("the budget of {} boxes was spent", opts.max_boxes));
+            break;
+        }
+        let mut take = Vec::new();
+        while take.len() < batch && waiting > 0 {
+            // half by volume, half round-robin over the coordinates' ends
+            let h = if turn.is_multiple_of(2) {
+                0
+            } else {
+                1 + (turn / 2) % (2 * dim)
+            };
+            turn += 1;
+            while let Some((_, id)) = heaps[h].pop() {
+                if let Some(n) = nodes[id].take() {
+                    take.push(n);
+                    waiting -= 1;
+                    break;
+                }
+            }
+        }
+        processed += take.len();
+        let outs: Vec<Outcome> = take
+            .into_par_iter()
+            .map(|n| ctx.process(n, start))
+            .collect();
+        for o in outs {
+            leaves.extend(o.leaves);
+            for c in o.children {
+                let id = nodes.len();
+                push(&mut heaps, id, &c.u);
+                nodes.push(Some(c));
+                waiting += 1;
+            }
+        }
+        if let Some(f) = progress {
+            let mut undecided: f64 = nodes.iter().flatten().map(|n| keys(&n.u)[0]).sum();
+            undecided += leaves
+                .iter()
+                .filter(|l| l.status == Status::Undecided)
+                .map(|l| rel_volume(&l.lo, &l.hi, start))
+                .sum::<f64>();
+            f(Progress {
+                processed,
+                queued: waiting,
+                undecided,
+            });
+        }
+    }
+    for n in nodes.into_iter().flatten() {
+        leaves.push(leaf(&n.u, Status::Undecided));
+    }
+    Paving {
+        boxes: leaves,
+        processed,
+        stopped,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}

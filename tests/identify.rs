@@ -1,0 +1,350 @@
+//! Set-membership identification (`bwcl identify`, issue #31): the paving against a closed form
+//! (the Hunt–Crossley limit, compared as exact rationals), against the generating set under
+//! bounded noise (20 seeds), against sampled f64 residuals, and the command's bad input.
+
+mod common;
+
+use bwcl::fit::cost::model_cor;
+use bwcl::fit::data::CorData;
+use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
+use bwcl::identify::setup::{Spec, problem};
+use bwcl::models::{ModelKind, NdParams};
+use bwcl::observables::FloatOptions;
+use inari::Interval;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rug::Rational;
+
+fn run(
+    kind: ModelKind,
+    data: &CorData,
+    spec: &Spec,
+    div: f64,
+    max_boxes: usize,
+) -> (Paving, Vec<Interval>) {
+    let (p, start) = problem(kind, data, spec).expect("a valid problem");
+    let mut o = Options::new(&start, div);
+    o.max_boxes = max_boxes;
+    (pave(&p, &start, &o, None), start)
+}
+
+fn q(x: f64) -> Rational {
+    Rational::from_f64(x).expect("finite")
+}
+
+/// The Hunt–Crossley limit (B_b = 10⁻³⁰⁰, Γ_b = 0): e depends on σ = σ_b v0 alone and
+/// decreases in it, so F = {σ_b : |e_HC(σ_b v0_i) − e_i| ≤ E} is an interval known exactly.
+/// Every box proved feasible has both ends in F, every box proved infeasible has one row
+/// violated on one side at both ends (e monotone: on the whole box), as exact rationals.
+#[test]
+fn the_hunt_crossley_feasible_set_is_paved_exactly() {
+    let (e_err, v0) = (0.02, [1.0, 2.0]);
+    // data: e_HC at σ_b = 0.3 (the bracket's lower end, rounded to a double)
+    let e: Vec<f64> = v0
+        .iter()
+        .map(|&v| common::hunt_crossley_bracket(&(q(0.3) * q(v))).0.to_f64())
+        .collect();
+    let data = CorData::new(v0.to_vec(), e.clone()).unwrap();
+    let spec = Spec {
+        base: Some("1e-300,0,0.5,0.3,1.5,1.5"),
+        bounds: Some("sigma_b=0.1..0.6"),
+        error: Some(e_err),
+        ..Spec::default()
+    };
+    let (pav, _) = run(ModelKind::Shc, &data, &spec, 128.0, 400);
+    let [nf, ni, _] = pav.counts();
+    assert!(nf > 0 && ni > 0, "counts {:?}", pav.counts());
+    // F contains σ_b = 0.3: a box holding it is never infeasible
+    let eh = |sigma_b: f64, i: usize| common::hunt_crossley_bracket(&(q(sigma_b) * q(v0[i])));
+    let (lo_t, hi_t): (Vec<Rational>, Vec<Rational>) = e
+        .iter()
+        .map(|&x| (q(x) - q(e_err), q(x) + q(e_err)))
+        .unzip();
+    for b in &pav.boxes {
+        let (a, c) = (b.lo[0], b.hi[0]);
+        match b.status {
+            Status::Feasible => {
+                for s in [a, c] {
+                    for i in 0..2 {
+                        let (l, h) = eh(s, i);
+                        assert!(l >= lo_t[i] && h <= hi_t[i], "feasible [{a}, {c}] row {i}");
+                    }
+                }
+            }
+            Status::Infeasible => {
+                assert!(!(a <= 0.3 && 0.3 <= c), "the data's σ_b in [{a}, {c}]");
+                let violated = (0..2).any(|i| {
+                    let (ea, ec) = (eh(a, i), eh(c, i));
+                    // e decreases in σ_b: e(c) ≤ e ≤ e(a) on the box
+                    ea.1 < lo_t[i] || ec.0 > hi_t[i]
+                });
+                assert!(violated, "infeasible [{a}, {c}] holds feasible points");
+            }
+            Status::Undecided => {}
+        }
+    }
+}
+
+/// The f64 residuals at a point: max_i |e(𝓟(P*, v0_i)) − e_i| (∞ when not evaluated).
+fn worst_residual(kind: ModelKind, base: [f64; 6], data: &CorData) -> f64 {
+    let p = NdParams {
+        b: base[0],
+        gamma: base[1],
+        kappa: base[2],
+        sigma: base[3],
+        n: base[4],
+        p: base[5],
+    };
+    model_cor(kind, &p, &data.v0, &FloatOptions::default())
+        .iter()
+        .zip(&data.e)
+        .map(|(r, e)| r.as_ref().map_or(f64::INFINITY, |m| (m - e).abs()))
+        .fold(0.0, f64::max)
+}
+
+/// Points of a box: its corners' mix and inner points (deterministic).
+fn samples(b: &Leaf, k: usize) -> Vec<Vec<f64>> {
+    (0..k)
+        .map(|s| {
+            b.lo.iter()
+                .zip(&b.hi)
+                .enumerate()
+                .map(|(j, (&l, &h))| {
+                    let t = ((s * (2 * j + 3) + 1) % (k + 1)) as f64 / k as f64;
+                    l + t.clamp(0.0, 1.0) * (h - l)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// 20 data sets from the DSS set with bounded noise |δ| ≤ E/2: the generating σ_b and κ are in F,
+/// so never in a box proved infeasible; sampled points of feasible boxes have f64 residuals
+/// within E (the f64 engine's error, ≪ 1e-6, as margin), those of infeasible boxes violate a
+/// row.
+#[test]
+fn the_generating_set_is_never_proved_infeasible_under_bounded_noise() {
+    let kind = ModelKind::Shc;
+    let truth = [1.43, -1.42, 0.632, 0.00715, 1.31, 1.27];
+    let p = NdParams {
+        b: truth[0],
+        gamma: truth[1],
+        kappa: truth[2],
+        sigma: truth[3],
+        n: truth[4],
+        p: truth[5],
+    };
+    let v0 = vec![0.5, 2.5];
+    let clean: Vec<f64> = model_cor(kind, &p, &v0, &FloatOptions::default())
+        .into_iter()
+        .map(|r| r.unwrap())
+        .collect();
+    let e_err = 0.01;
+    let margin = 1e-6;
+    let (mut nf, mut ni) = (0, 0);
+    for seed in 0..20u64 {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let e: Vec<f64> = clean
+            .iter()
+            .map(|c| c + rng.random_range(-e_err / 2.0..e_err / 2.0))
+            .collect();
+        let data = CorData::new(v0.clone(), e).unwrap();
+        let spec = Spec {
+            base: Some("1.43,-1.42,0.632,0.00715,1.31,1.27"),
+            bounds: Some(if seed % 2 == 0 {
+                "sigma_b=0.003..0.02"
+            } else {
+                "kappa=0.5..0.75"
+            }),
+            error: Some(e_err),
+            ..Spec::default()
+        };
+        let j = if seed % 2 == 0 { 3 } else { 2 };
+        let (pav, _) = run(kind, &data, &spec, 16.0, 80);
+        for b in &pav.boxes {
+            let at = |x: f64| {
+                let mut q = truth;
+                q[j] = x;
+                q
+            };
+            match b.status {
+                Status::Infeasible => {
+                    ni += 1;
+                    assert!(
+                        !(b.lo[0] <= truth[j] && truth[j] <= b.hi[0]),
+                        "seed {seed}: the generating value in infeasible {b:?}"
+                    );
+                    for s in samples(b, 5) {
+                        let r = worst_residual(kind, at(s[0]), &data);
+                        assert!(r > e_err - margin, "seed {seed}: {s:?} fits ({r}) in {b:?}");
+                    }
+                }
+                Status::Feasible => {
+                    nf += 1;
+                    for s in samples(b, 5) {
+                        let r = worst_residual(kind, at(s[0]), &data);
+                        assert!(
+                            r <= e_err + margin,
+                            "seed {seed}: {s:?} misses ({r}) in {b:?}"
+                        );
+                    }
+                }
+                Status::Undecided => {}
+            }
+        }
+    }
+    // the test decides something
+    assert!(nf > 0 && ni > 0, "feasible {nf}, infeasible {ni}");
+}
+
+/// An error far below the noise: F is proved empty (the model falsified at that error) — a
+/// certificate, with every box infeasible.
+#[test]
+fn data_off_the_model_are_proved_inconsistent() {
+    // e = 0.3 at v0 = 1 while the DSS set gives ≈ 0.85 for every κ in the box
+    let data = CorData::new(vec![1.0], vec![0.3]).unwrap();
+    let spec = Spec {
+        base: Some("1.43,-1.42,0.632,0.00715,1.31,1.27"),
+        bounds: Some("kappa=0.6..0.65"),
+        error: Some(0.01),
+        ..Spec::default()
+    };
+    let (pav, _) = run(ModelKind::Shc, &data, &spec, 8.0, 50);
+    assert!(pav.hull().is_none(), "{:?}", pav.counts());
+    assert!(pav.stopped.is_none());
+}
+
+fn one_line_exit_2(args: &[&str], needle: &str) {
+    let out = common::bwcl(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn bad_input_gets_one_line_and_exit_2() {
+    let dir = std::env::temp_dir().join(format!("bwcl-identify-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = dir.join("d.csv");
+    std::fs::write(&data, "v0,e\n1,0.85\n").unwrap();
+    let empty = dir.join("empty.csv");
+    std::fs::write(&empty, "").unwrap();
+    let d = data.to_str().unwrap();
+    let base = "--base=1.43,-1.42,0.632,0.00715,1.31,1.27";
+    fn with<'a>(d: &'a str, base: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+        let mut v = vec!["identify", "--model", "shc", "--data", d, base];
+        v.extend_from_slice(extra);
+        v
+    }
+    let cmd = |extra: &[&'static str]| with(d, base, extra);
+    one_line_exit_2(
+        &cmd(&["--error", "0", "--bounds", "kappa=0.5..0.7"]),
+        "--error 0",
+    );
+    one_line_exit_2(
+        &cmd(&["--error", "-0.1", "--bounds", "kappa=0.5..0.7"]),
+        "> 0",
+    );
+    one_line_exit_2(
+        &cmd(&["--error", "0.02", "--bounds", "kappa=1.2..1.5"]),
+        "outside 𝓟",
+    );
+    one_line_exit_2(
+        &cmd(&[
+            "--error",
+            "0.02",
+            "--fix",
+            "B_b=1",
+            "--bounds",
+            "Gamma_b=2..3",
+        ]),
+        "outside 𝓟",
+    );
+    one_line_exit_2(
+        &cmd(&["--error", "0.02", "--bounds", "zeta=0.5..0.7"]),
+        "'zeta'",
+    );
+    one_line_exit_2(
+        &cmd(&[
+            "--error",
+            "0.02",
+            "--bounds",
+            "kappa=0.5..0.7",
+            "--free",
+            "kappa,nu",
+        ]),
+        "'nu'",
+    );
+    one_line_exit_2(&cmd(&["--error", "0.02"]), "--bounds");
+    one_line_exit_2(
+        &[
+            "identify",
+            "--model",
+            "shc",
+            "--data",
+            empty.to_str().unwrap(),
+            base,
+            "--error",
+            "0.02",
+            "--bounds",
+            "kappa=0.5..0.7",
+        ],
+        "empty",
+    );
+    // no error at all, and no sigma column
+    one_line_exit_2(&cmd(&["--bounds", "kappa=0.5..0.7"]), "sigma");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The JSON of the issue: free names, boxes with outward ends in the order of `free`, the hull,
+/// counts and seconds; every box end is a bound of a double the paving used.
+#[test]
+fn the_json_output_has_the_documented_shape() {
+    let dir = std::env::temp_dir().join(format!("bwcl-identify-json-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = dir.join("d.csv");
+    std::fs::write(&data, "v0,e\n1,0.85\n2,0.79\n").unwrap();
+    let out = common::bwcl(&[
+        "identify",
+        "--model",
+        "shc",
+        "--data",
+        data.to_str().unwrap(),
+        "--base=1.43,-1.42,0.632,0.00715,1.31,1.27",
+        "--error",
+        "0.02",
+        "--bounds",
+        "sigma_b=0.004..0.012",
+        "--resolution",
+        "4",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["free"], serde_json::json!(["sigma_b"]));
+    let boxes = v["boxes"].as_array().unwrap();
+    assert!(!boxes.is_empty());
+    let mut total = 0;
+    for b in boxes {
+        let (lo, hi) = (b["lo"][0].as_f64().unwrap(), b["hi"][0].as_f64().unwrap());
+        assert!(lo < hi && lo >= 0.0039 && hi <= 0.0121, "{b}");
+        assert!(["feasible", "infeasible", "undecided"].contains(&b["status"].as_str().unwrap()));
+        total += 1;
+    }
+    let c = &v["counts"];
+    let n = c["feasible"].as_u64().unwrap()
+        + c["infeasible"].as_u64().unwrap()
+        + c["undecided"].as_u64().unwrap();
+    assert_eq!(n, total);
+    assert!(v["seconds"].as_f64().unwrap() >= 0.0);
+    assert!(v["hull"].is_object() || v["hull"].is_null());
+    std::fs::remove_dir_all(&dir).ok();
+}
