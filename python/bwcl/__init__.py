@@ -56,6 +56,9 @@ __all__ = [
     "loop",
     "cost",
     "fit",
+    "identify",
+    "identify_dask",
+    "IdentifyResult",
     "CorResult",
     "RigorousResult",
     "TrajectoryResult",
@@ -839,3 +842,6 @@ def fit(
     )
     return _cost_result(FitResult, d, p1=d["p1"], seed=d["seed"], evaluations=d["evaluations"],
                         seconds=d["seconds"], starts=starts_out)
+
+
+from .identify import IdentifyResult, identify, identify_dask  # noqa: E402

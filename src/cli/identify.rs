@@ -5,7 +5,7 @@ use super::args::{IdentifyArgs, IdentifyFormat};
 use super::output::{self, outward};
 use super::progress::Progress;
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
-use crate::cli::fit::read_data;
+use super::fit::read_data;
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
 use bwcl::identify::setup::{Spec, problem};
 use bwcl::models::ModelKind;
@@ -116,7 +116,18 @@ fn verdict(p: &Paving, free: &[&str]) -> String {
     }
 }
 
-pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
+/// A paving done, with what its reports need.
+pub(crate) struct Done {
+    pub kind: ModelKind,
+    pub rows: usize,
+    pub start: Vec<Interval>,
+    pub free: Vec<&'static str>,
+    pub paving: Paving,
+}
+
+/// Reads the data, builds the problem and paves the box (a progress bar on a terminal when
+/// `bar` is set).
+pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
     let kind = ModelKind::from(a.model);
     let data = read_data(&a.data)?;
     let spec = Spec {
@@ -133,91 +144,87 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
     opts.max_boxes = a.max_boxes as usize;
     opts.taylor.deadline = Some(super::input::deadline(a.time_limit));
     opts.slope_taylor.deadline = opts.taylor.deadline;
-    if let Some(t) = std::env::var("BWCL_ID_TOL")
-        .ok()
-        .and_then(|t| t.parse().ok())
-    {
-        opts.slope_taylor.tol = t;
-    }
-    if let Some(t) = std::env::var("BWCL_ID_ORDER")
-        .ok()
-        .and_then(|t| t.parse().ok())
-    {
-        opts.slope_taylor.order = t;
-    }
-    if let Some(t) = std::env::var("BWCL_ID_WIDTH")
-        .ok()
-        .and_then(|t| t.parse().ok())
-    {
-        opts.slope_taylor.max_width = t;
-    }
-    if let Some(t) = std::env::var("BWCL_ID_VOL")
-        .ok()
-        .and_then(|t| t.parse().ok())
-    {
-        opts.slope_volume = t;
-    }
-    if let Some(t) = std::env::var("BWCL_ID_REFRESH")
-        .ok()
-        .and_then(|t| t.parse().ok())
-    {
-        opts.refresh = t;
-    }
-    let bar = Progress::range("identify", a.time_limit);
+    let progress = bar.then(|| Progress::range("identify", a.time_limit));
     let cb = |p: bwcl::identify::Progress| {
-        bar.set(
-            1.0 - p.undecided,
-            format!(
-                "{:.1} % of the box decided, {} boxes done, {} waiting",
-                100.0 * (1.0 - p.undecided),
-                p.processed,
-                p.queued
-            ),
-        )
+        if let Some(b) = &progress {
+            b.set(
+                1.0 - p.undecided,
+                format!(
+                    "{:.1} % of the box decided, {} boxes done, {} waiting",
+                    100.0 * (1.0 - p.undecided),
+                    p.processed,
+                    p.queued
+                ),
+            )
+        }
     };
     let paving = pave(&prob, &start, &opts, Some(&cb));
-    bar.finish();
-    let free = prob.space.free_names();
+    if let Some(b) = &progress {
+        b.finish();
+    }
+    Ok(Done {
+        kind,
+        rows: prob.rows.len(),
+        start,
+        free: prob.space.free_names(),
+        paving,
+    })
+}
+
+/// The JSON report of a paving (the shape).
+pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
+    let (paving, free, start) = (&d.paving, &d.free, &d.start);
     let [nf, ni, nu] = paving.counts();
-    let [sf, si, su] = paving.shares(&start);
-    let verdict = verdict(&paving, &free);
+    let [sf, si, su] = paving.shares(start);
+    let hull = paving.hull();
+    let out = IdentifyOut {
+        model: d.kind.name(),
+        free: free.clone(),
+        start: named(
+            free,
+            &start.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
+        ),
+        rows: d.rows,
+        verdict: verdict(paving, free),
+        empty: hull.is_none(),
+        hull: hull.as_ref().map(|h| named(free, h)),
+        feasible_hull: paving.feasible_hull().map(|h| named(free, &h)),
+        counts: Counts {
+            feasible: nf,
+            infeasible: ni,
+            undecided: nu,
+        },
+        shares: Shares {
+            feasible: sf,
+            infeasible: si,
+            undecided: su,
+        },
+        complete: paving.stopped.is_none(),
+        stopped: paving.stopped.as_deref(),
+        processed: paving.processed,
+        resolution,
+        seconds: paving.seconds,
+        boxes: paving.boxes.iter().map(box_out).collect(),
+    };
+    let mut b = serde_json::to_vec_pretty(&out)
+        .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
+    b.push(b'\n');
+    Ok(b)
+}
+
+pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
+    let done = compute(a, true)?;
+    let d = &done;
+    let (kind, start) = (d.kind, &d.start);
+    let paving = &d.paving;
+    let prob_rows = d.rows;
+    let free = d.free.clone();
+    let [nf, ni, nu] = paving.counts();
+    let [sf, si, su] = paving.shares(start);
+    let verdict = verdict(paving, &free);
     let hull = paving.hull();
     let bytes = match a.format {
-        IdentifyFormat::Json => {
-            let out = IdentifyOut {
-                model: kind.name(),
-                free: free.clone(),
-                start: named(
-                    &free,
-                    &start.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
-                ),
-                rows: prob.rows.len(),
-                verdict: verdict.clone(),
-                empty: hull.is_none(),
-                hull: hull.as_ref().map(|h| named(&free, h)),
-                feasible_hull: paving.feasible_hull().map(|h| named(&free, &h)),
-                counts: Counts {
-                    feasible: nf,
-                    infeasible: ni,
-                    undecided: nu,
-                },
-                shares: Shares {
-                    feasible: sf,
-                    infeasible: si,
-                    undecided: su,
-                },
-                complete: paving.stopped.is_none(),
-                stopped: paving.stopped.as_deref(),
-                processed: paving.processed,
-                resolution: a.resolution,
-                seconds: paving.seconds,
-                boxes: paving.boxes.iter().map(box_out).collect(),
-            };
-            let mut b = serde_json::to_vec_pretty(&out)
-                .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
-            b.push(b'\n');
-            b
-        }
+        IdentifyFormat::Json => json_report(d, a.resolution)?,
         IdentifyFormat::Csv => {
             let mut head = vec!["status".to_string()];
             for n in &free {
@@ -239,7 +246,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
             let mut s = format!(
                 "model {}: {} data rows, free {} (resolution 1/{})\n{verdict}\n\n",
                 kind.name(),
-                prob.rows.len(),
+                prob_rows,
                 free.join(", "),
                 a.resolution
             );
@@ -309,7 +316,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
         }
     };
     if let Some(p) = &a.plot {
-        output::emit(Some(p), svg(&paving, &start, &free).as_bytes())?;
+        output::emit(Some(p), svg(paving, start, &free).as_bytes())?;
     }
     output::emit(a.out.as_deref(), &bytes)?;
     match &paving.stopped {

@@ -1,0 +1,84 @@
+"""bwcl.identify: the same paving as `bwcl identify --format json`, bad input as ValueError,
+arrays as data, and the Dask split-and-merge against the whole paving."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import bwcl
+from conftest import DSS
+
+V0 = [0.5, 2.5]
+E = [0.9054, 0.7731]
+BOX = {"sigma_b": (0.003, 0.02)}
+
+
+def _write(tmp_path):
+    p = tmp_path / "d.csv"
+    p.write_text("v0,e\n" + "".join(f"{v!r},{e!r}\n" for v, e in zip(V0, E)))
+    return p
+
+
+def test_identify_matches_the_program(tmp_path, cli):
+    p = _write(tmp_path)
+    r = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=16)
+    out = subprocess.run(
+        [str(cli), "identify", "--model", "shc", "--data", str(p), "--error", "0.01",
+         "--base=" + DSS, "--bounds", "sigma_b=0.003..0.02", "--resolution", "16",
+         "--format", "json"], capture_output=True, check=True)
+    d = json.loads(out.stdout)
+    assert r.free == ("sigma_b",)
+    assert r.counts == d["counts"]
+    assert r.hull == {k: tuple(v) for k, v in d["hull"].items()}
+    assert r.lo.shape == (len(d["boxes"]), 1)
+    assert sorted(zip(r.lo[:, 0], r.status)) == sorted((b["lo"][0], b["status"]) for b in d["boxes"])
+    # the data's truth region: the generating σ_b is not in an infeasible box
+    bad = [(a, b) for a, b, s in zip(r.lo[:, 0], r.hi[:, 0], r.status) if s == "infeasible"]
+    assert not any(a <= 0.00715 <= b for a, b in bad)
+    assert r.counts["feasible"] > 0 and r.complete
+
+
+def test_arrays_give_the_same_paving(tmp_path):
+    p = _write(tmp_path)
+    a = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=8)
+    b = bwcl.identify("shc", v0=np.array(V0), e=np.array(E), bounds="sigma_b=0.003..0.02",
+                      error=0.01, base=DSS, resolution=8)
+    assert a.counts == b.counts and a.hull == b.hull
+
+
+@pytest.mark.parametrize("kw, needle", [
+    (dict(error=0.0), "--error"),
+    (dict(error=0.01, bounds={"kappa": (1.2, 1.5)}), "outside"),
+    (dict(error=0.01, bounds={"zeta": (0.1, 0.2)}), "zeta"),
+    (dict(error=0.01, free=["kappa"]), "--free"),
+])
+def test_bad_input_raises_value_error(tmp_path, kw, needle):
+    p = _write(tmp_path)
+    args = dict(bounds=BOX, base=DSS, resolution=4)
+    args.update(kw)
+    with pytest.raises(ValueError, match=needle):
+        bwcl.identify("shc", p, **args)
+
+
+def test_dask_split_and_merge_covers_the_box(tmp_path):
+    """Four sub-boxes paved on a Dask LocalCluster (two worker processes) and merged: the boxes
+    tile the whole box (their lengths add up), and the merged hull holds the generating σ_b as
+    the whole paving's does."""
+    distributed = pytest.importorskip("distributed")
+    p = _write(tmp_path)
+    whole = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=16)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        merged = bwcl.identify_dask(client, "shc", str(p), bounds=BOX, parts=4, resolution=16,
+                                    error=0.01, base=DSS, threads=1)
+    length = float(np.sum(merged.hi[:, 0] - merged.lo[:, 0]))
+    assert abs(length - (0.02 - 0.003)) < 1e-9
+    assert merged.hull is not None and whole.hull is not None
+    assert merged.hull["sigma_b"][0] <= 0.00715 <= merged.hull["sigma_b"][1]
+    assert abs(sum(merged.shares.values()) - 1.0) < 1e-9
+    # the same resolution everywhere: the hulls agree to within one finest box
+    w = (0.02 - 0.003) / 16
+    assert abs(merged.hull["sigma_b"][1] - whole.hull["sigma_b"][1]) <= w
