@@ -2,7 +2,6 @@
 arrays as data, and the Dask split-and-merge against the whole paving."""
 
 import json
-import subprocess
 
 import numpy as np
 import pytest
@@ -24,11 +23,11 @@ def _write(tmp_path):
 def test_identify_matches_the_program(tmp_path, cli):
     p = _write(tmp_path)
     r = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=16)
-    out = subprocess.run(
-        [str(cli), "identify", "--model", "shc", "--data", str(p), "--error", "0.01",
-         "--base=" + DSS, "--bounds", "sigma_b=0.003..0.02", "--resolution", "16",
-         "--format", "json"], capture_output=True, check=True)
-    d = json.loads(out.stdout)
+    code, out, err = cli("identify", "--model", "shc", "--data", str(p), "--error", "0.01",
+                         "--base=" + DSS, "--bounds", "sigma_b=0.003..0.02", "--resolution", "16",
+                         "--format", "json")
+    assert code == 0, err
+    d = json.loads(out)
     assert r.free == ("sigma_b",)
     assert r.counts == d["counts"]
     assert r.hull == {k: tuple(v) for k, v in d["hull"].items()}
