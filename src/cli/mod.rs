@@ -10,6 +10,7 @@ pub(crate) mod fit;
 pub(crate) mod input;
 pub(crate) mod output;
 pub(crate) mod precise;
+pub(crate) mod profile;
 pub(crate) mod progress;
 
 use bwcl::fit::data::echo;
