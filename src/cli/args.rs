@@ -357,9 +357,9 @@ pub struct FitArgs {
     pub p1: bool,
     #[command(flatten)]
     pub search: SearchArgs,
-    /// At the best fit (and, in JSON, at every minimum): the Jacobian of the residuals, the
-    /// covariance s²(JᵀJ)⁻¹, standard errors, correlations and the singular values and
-    /// directions of the Jacobian.
+    /// At the best fit (and, in JSON, at every minimum, there by central differences): the
+    /// Jacobian of the residuals, the covariance s²(JᵀJ)⁻¹, standard errors, correlations and
+    /// the singular values and directions of the Jacobian.
     #[arg(long)]
     pub uncertainty: bool,
     /// The Jacobian of --uncertainty: proved (the proved sensitivities' midpoints, a column by

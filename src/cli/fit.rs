@@ -61,7 +61,7 @@ struct MinimumOut {
 }
 
 #[derive(Serialize)]
-struct FitOut {
+pub(crate) struct FitOut {
     model: &'static str,
     /// The best base set, named B, Gamma, kappa, sigma (σ_b), n, p.
     #[serde(rename = "P_star")]
@@ -437,67 +437,8 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
     let best_min = res.minima.first();
     let converged = best_min.is_none_or(|m| m.converged);
     let at_bound = best_min.map(|m| m.at_bound.clone()).unwrap_or_default();
-    let space = &res.map.space;
     let bytes = match a.format {
-        ReportFormat::Json => {
-            let mut minima = Vec::new();
-            for (i, mi) in res.minima.iter().enumerate() {
-                let u = match (&unc, i) {
-                    (Some(u), 0) => Some(u.clone()),
-                    (Some(_), _) => Some(fit_uncertainty(&res, &mi.base, &data, a.jacobian)?),
-                    (None, _) => None,
-                };
-                minima.push(minimum_out(mi, u));
-            }
-            json(&FitOut {
-                model: kind.name(),
-                p_star: super::commands::params_f64(&best.base),
-                base: base_text(&best.base),
-                j,
-                chi2: j * j,
-                reduced_chi2: res.stats.reduced_chi2(j),
-                m_res: res.stats.m_res,
-                k: res.stats.k,
-                s2: res.stats.s2,
-                errors_given: res.weights.errors_given,
-                uses_tc: res.weights.tc.is_some(),
-                free: space.free_names(),
-                fixed: (0..6)
-                    .filter_map(|i| match space.slots[i] {
-                        Slot::Fixed(v) => Some((NAMES[i], v)),
-                        Slot::Free { .. } => None,
-                    })
-                    .collect(),
-                bounds: (0..6)
-                    .filter_map(|i| res.map.bounds(i).map(|(lo, hi)| (NAMES[i], [lo, hi])))
-                    .collect(),
-                converged,
-                at_bound: at_bound.clone(),
-                minima,
-                indistinguishable: n_indist,
-                uncertainty: unc.clone(),
-                m,
-                rms: curve.j / (m as f64).sqrt(),
-                p1: a.p1,
-                seed: a.seed,
-                evaluations: res.evaluations,
-                seconds: res.elapsed.as_secs_f64(),
-                starts: res
-                    .starts
-                    .iter()
-                    .map(|s| StartOut {
-                        start: s.start + 1,
-                        j: s.j,
-                        p_star: super::commands::params_f64(&s.base),
-                        iterations: s.iterations,
-                        evaluations: s.evaluations,
-                        converged: s.converged,
-                    })
-                    .collect(),
-                curve: curve_points(&curve),
-                errors: errors_text(&curve),
-            })?
-        }
+        ReportFormat::Json => json(&fit_out(a, &res, &data, unc.clone())?)?,
         ReportFormat::Table => {
             let mut s = format!(
                 "model {}: P* (B,Γ,κ,σ_b,n,p) = {}\nJ = {}  (M = {m}, J/√M = {}; χ² = {}, \
@@ -585,6 +526,91 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
         ));
     }
     failures(&curve)
+}
+
+/// The JSON report of `fit`: with the uncertainty at the best point given, the uncertainty at
+/// every other minimum too (by central differences: see `bwcl::fit::uncertainty`).
+pub(crate) fn fit_out(
+    a: &FitArgs,
+    res: &FitResult,
+    data: &CorData,
+    unc: Option<Uncertainty>,
+) -> Result<FitOut, CliError> {
+    let kind = res.kind;
+    let best = &res.best;
+    let curve = model_curve(kind, &best.base, data, &FloatOptions::default());
+    let j = weighted_cost(
+        kind,
+        &best.base,
+        data,
+        &res.weights,
+        &FloatOptions::default(),
+    );
+    let m = data.len();
+    let n_indist = res.minima.iter().filter(|m| m.indistinguishable).count();
+    let best_min = res.minima.first();
+    let converged = best_min.is_none_or(|m| m.converged);
+    let at_bound = best_min.map(|m| m.at_bound.clone()).unwrap_or_default();
+    let space = &res.map.space;
+    let mut minima = Vec::new();
+    for (i, mi) in res.minima.iter().enumerate() {
+        let u = match (&unc, i) {
+            (Some(u), 0) => Some(u.clone()),
+            // the other minima by central differences: the proved Jacobian costs M·k runs of
+            // the variational system per point, which would multiply the fit's time
+            (Some(_), _) => Some(fit_uncertainty(res, &mi.base, data, JacobianArg::Central)?),
+            (None, _) => None,
+        };
+        minima.push(minimum_out(mi, u));
+    }
+    Ok(FitOut {
+        model: kind.name(),
+        p_star: super::commands::params_f64(&best.base),
+        base: base_text(&best.base),
+        j,
+        chi2: j * j,
+        reduced_chi2: res.stats.reduced_chi2(j),
+        m_res: res.stats.m_res,
+        k: res.stats.k,
+        s2: res.stats.s2,
+        errors_given: res.weights.errors_given,
+        uses_tc: res.weights.tc.is_some(),
+        free: space.free_names(),
+        fixed: (0..6)
+            .filter_map(|i| match space.slots[i] {
+                Slot::Fixed(v) => Some((NAMES[i], v)),
+                Slot::Free { .. } => None,
+            })
+            .collect(),
+        bounds: (0..6)
+            .filter_map(|i| res.map.bounds(i).map(|(lo, hi)| (NAMES[i], [lo, hi])))
+            .collect(),
+        converged,
+        at_bound: at_bound.clone(),
+        minima,
+        indistinguishable: n_indist,
+        uncertainty: unc,
+        m,
+        rms: curve.j / (m as f64).sqrt(),
+        p1: a.p1,
+        seed: a.seed,
+        evaluations: res.evaluations,
+        seconds: res.elapsed.as_secs_f64(),
+        starts: res
+            .starts
+            .iter()
+            .map(|s| StartOut {
+                start: s.start + 1,
+                j: s.j,
+                p_star: super::commands::params_f64(&s.base),
+                iterations: s.iterations,
+                evaluations: s.evaluations,
+                converged: s.converged,
+            })
+            .collect(),
+        curve: curve_points(&curve),
+        errors: errors_text(&curve),
+    })
 }
 
 /// The minima as aligned text.

@@ -11,19 +11,22 @@ use bwcl::fit::data::echo;
 use bwcl::fit::profile::{End, Profile, grid_range, profile as run_profile};
 use bwcl::fit::space::{NAMES, Slot, param_index};
 use bwcl::fit::uncertainty::{JacobianMethod, uncertainty};
-use bwcl::fit::{FitOptions, fit as run_fit};
+use bwcl::fit::{CorData, FitOptions, fit as run_fit};
 use bwcl::models::ModelKind;
 use bwcl::observables::FloatOptions;
+use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::sync::Arc;
 
 #[derive(Serialize)]
-struct ProfileOut {
+pub(crate) struct ProfileOut {
     model: &'static str,
     /// The best fit the profiles start from.
     #[serde(rename = "P_star")]
     p_star: ParamsOut<f64>,
     base: String,
+    #[serde(skip)]
+    p_best: bwcl::models::NdParams<f64>,
     #[serde(rename = "J")]
     j: f64,
     s2: f64,
@@ -31,6 +34,18 @@ struct ProfileOut {
     threshold: f64,
     seconds: f64,
     profiles: Vec<Profile>,
+}
+
+/// The progress bar of `profile` on stderr (hidden when stderr is not a terminal): grid points.
+fn profile_bar() -> ProgressBar {
+    let bar = progress_bar(0);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "profile {bar:32} {pos}/{len} grid points, {elapsed} elapsed, ~{eta} left  {msg}",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
 }
 
 fn end_text(e: &End) -> String {
@@ -42,8 +57,86 @@ fn end_text(e: &End) -> String {
 }
 
 pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
-    let kind = ModelKind::from(a.model);
     let data = read_data(&a.data)?;
+    let bar = profile_bar();
+    let out = compute(a, &data, &bar)?;
+    bar.finish_and_clear();
+    let kind = ModelKind::from(a.model);
+    let (best, profiles) = (&out.p_best, &out.profiles);
+    let bytes = match a.format {
+        ProfileFormat::Json => json(&out)?,
+        ProfileFormat::Csv => {
+            let mut s =
+                String::from("param,value,J,delta_chi2,B,Gamma,kappa,sigma,n,p,converged\n");
+            for p in profiles {
+                for q in &p.points {
+                    s.push_str(&format!(
+                        "{},{},{},{},{},{}\n",
+                        p.name,
+                        num(q.value),
+                        num(q.j),
+                        num(q.delta_chi2),
+                        q.p_star.map(num).join(","),
+                        q.converged
+                    ));
+                }
+            }
+            s.into_bytes()
+        }
+        ProfileFormat::Table => {
+            let mut s = format!(
+                "model {}: best P* (B,Γ,κ,σ_b,n,p) = {}, J = {}, s² = {}\n\
+                 95 % likelihood-ratio intervals {{θ : (J_p(θ)² − J_min²)/s² ≤ {:.3}}}:\n",
+                kind.name(),
+                base_text(best),
+                num(out.j),
+                num(out.s2),
+                out.threshold,
+            );
+            let rows: Vec<Vec<String>> = profiles
+                .iter()
+                .map(|p| {
+                    vec![
+                        p.name.to_string(),
+                        num(p.best_value),
+                        end_text(&p.lo),
+                        end_text(&p.hi),
+                        num(p.j_min),
+                    ]
+                })
+                .collect();
+            s.push_str(&table(&["param", "best", "lo", "hi", "J_min"], &rows));
+            for p in profiles {
+                s.push_str(&format!("\nprofile of {}:\n", p.name));
+                let rows: Vec<Vec<String>> = p
+                    .points
+                    .iter()
+                    .map(|q| {
+                        vec![
+                            num(q.value),
+                            format!("{:.6e}", q.j),
+                            format!("{:.3}", q.delta_chi2),
+                            if q.converged { "yes" } else { "budget" }.into(),
+                        ]
+                    })
+                    .collect();
+                s.push_str(&table(&[p.name, "J", "Δχ²", "converged"], &rows));
+            }
+            s.into_bytes()
+        }
+    };
+    output::emit(None, &bytes)?;
+    Ok(EXIT_OK)
+}
+
+/// Fits, then profiles (the work of `profile`), advancing `bar` per grid point.
+pub(crate) fn compute(
+    a: &ProfileArgs,
+    data: &CorData,
+    bar: &ProgressBar,
+) -> Result<ProfileOut, CliError> {
+    let kind = ModelKind::from(a.model);
+    let data = data.clone();
     let space = search_space(kind, &a.search)?;
     let weights = search_weights(&data, &a.search)?;
     let mut opts = FitOptions {
@@ -77,6 +170,7 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
         }
     };
     let t0 = std::time::Instant::now();
+    bar.set_message("fitting (the best point)");
     let res = run_fit(kind, &data, &opts, None).map_err(CliError::Failed)?;
     let best = res.best.base.clone();
     // standard errors for the grid ranges of unbounded parameters (central differences: the
@@ -103,7 +197,7 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
     } else {
         vec![None; params.len()]
     };
-    let bar = progress_bar((params.len() * a.points) as u64);
+    bar.set_length((params.len() * a.points) as u64);
     let tick: Arc<dyn Fn() + Send + Sync> = {
         let bar = bar.clone();
         Arc::new(move || bar.inc(1))
@@ -130,78 +224,15 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
             .map_err(CliError::Failed)?,
         );
     }
-    bar.finish_and_clear();
-    let bytes = match a.format {
-        ProfileFormat::Json => json(&ProfileOut {
-            model: kind.name(),
-            p_star: super::commands::params_f64(&best),
-            base: base_text(&best),
-            j: res.best.j,
-            s2: res.stats.s2,
-            threshold: profiles.first().map_or(f64::NAN, |p| p.threshold),
-            seconds: t0.elapsed().as_secs_f64(),
-            profiles,
-        })?,
-        ProfileFormat::Csv => {
-            let mut s =
-                String::from("param,value,J,delta_chi2,B,Gamma,kappa,sigma,n,p,converged\n");
-            for p in &profiles {
-                for q in &p.points {
-                    s.push_str(&format!(
-                        "{},{},{},{},{},{}\n",
-                        p.name,
-                        num(q.value),
-                        num(q.j),
-                        num(q.delta_chi2),
-                        q.p_star.map(num).join(","),
-                        q.converged
-                    ));
-                }
-            }
-            s.into_bytes()
-        }
-        ProfileFormat::Table => {
-            let mut s = format!(
-                "model {}: best P* (B,Γ,κ,σ_b,n,p) = {}, J = {}, s² = {}\n\
-                 95 % likelihood-ratio intervals {{θ : (J_p(θ)² − J_min²)/s² ≤ {:.3}}}:\n",
-                kind.name(),
-                base_text(&best),
-                num(res.best.j),
-                num(res.stats.s2),
-                profiles.first().map_or(f64::NAN, |p| p.threshold),
-            );
-            let rows: Vec<Vec<String>> = profiles
-                .iter()
-                .map(|p| {
-                    vec![
-                        p.name.to_string(),
-                        num(p.best_value),
-                        end_text(&p.lo),
-                        end_text(&p.hi),
-                        num(p.j_min),
-                    ]
-                })
-                .collect();
-            s.push_str(&table(&["param", "best", "lo", "hi", "J_min"], &rows));
-            for p in &profiles {
-                s.push_str(&format!("\nprofile of {}:\n", p.name));
-                let rows: Vec<Vec<String>> = p
-                    .points
-                    .iter()
-                    .map(|q| {
-                        vec![
-                            num(q.value),
-                            format!("{:.6e}", q.j),
-                            format!("{:.3}", q.delta_chi2),
-                            if q.converged { "yes" } else { "budget" }.into(),
-                        ]
-                    })
-                    .collect();
-                s.push_str(&table(&[p.name, "J", "Δχ²", "converged"], &rows));
-            }
-            s.into_bytes()
-        }
-    };
-    output::emit(None, &bytes)?;
-    Ok(EXIT_OK)
+    Ok(ProfileOut {
+        model: kind.name(),
+        p_star: super::commands::params_f64(&best),
+        base: base_text(&best),
+        p_best: best.clone(),
+        j: res.best.j,
+        s2: res.stats.s2,
+        threshold: bwcl::fit::chi2::chi2_quantile(1, 0.95),
+        seconds: t0.elapsed().as_secs_f64(),
+        profiles,
+    })
 }

@@ -33,6 +33,11 @@ use rayon::prelude::*;
 /// Ratio σ_i/σ_max below which a direction counts as poorly determined.
 pub const POOR: f64 = 1e-3;
 
+/// Local error target of the proved sensitivities' Taylor steps: 1e−12 instead of the
+/// engine's 8e−16 — only the midpoints are used, the enclosures stay ~1e−7 wide at most, and
+/// the runs take about 25 % less time (measured on the DSS set at v0 = 0.1, 1, 5 m/s).
+pub const SENSITIVITY_TOL: f64 = 1e-12;
+
 /// How the Jacobian is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JacobianMethod {
@@ -203,7 +208,10 @@ pub fn jacobian(
     method: JacobianMethod,
     float: &FloatOptions,
 ) -> Result<(Vec<Vec<f64>>, Vec<String>), String> {
-    let taylor = TaylorOptions::default();
+    let taylor = TaylorOptions {
+        tol: SENSITIVITY_TOL,
+        ..TaylorOptions::default()
+    };
     let cols: Vec<Result<(Vec<f64>, String), String>> = free
         .par_iter()
         .map(|&i| {
