@@ -818,7 +818,7 @@ def fit(
     tc_error: Optional[float] = None,
     use_tc: bool = True,
     uncertainty: bool = False,
-    jacobian: str = "proved",
+    jacobian: str = "central",
     cluster: bool = True,
     progress: Union[None, bool, Callable[[FitProgress], Any]] = None,
     threads: Optional[int] = None,
@@ -840,7 +840,8 @@ def fit(
         ``tc_sigma`` column value; ``use_tc=False`` ignores a ``tc`` column.
     uncertainty : the Jacobian, covariance, standard errors, correlations and SVD at the best
         fit (``result.uncertainty``) and at every minimum (``result.minima[i]["uncertainty"]``);
-        ``jacobian``: "proved" or "central".
+        ``jacobian``: "central" (central differences of the f64 engine) or "proved" (the proved
+        sensitivities' midpoints: exact to ~1e-8, but M·k variational runs).
     cluster : cluster the starts into distinct minima (``result.minima``).
     progress : a callable receiving a :class:`FitProgress` after every iteration, or True for
         a progress bar (tqdm when installed). An exception it raises is raised when the fit

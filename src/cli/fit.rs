@@ -169,6 +169,12 @@ pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
         ..FitOptions::default()
     };
     opts.float.ode.max_steps = opts.float.ode.max_steps.min(FIT_MAX_STEPS);
+    // --p1 against --fix/--bounds p, or nothing left free: bad input
+    opts.space_map(kind).map_err(CliError::Input)?;
+    if let (Some(p), Ok(map)) = (opts.initial.first(), opts.space_map(kind)) {
+        map.from_params(p)
+            .map_err(|e| CliError::Input(format!("--init: {e}")))?;
+    }
     Ok(opts)
 }
 
@@ -248,6 +254,8 @@ pub(crate) fn uncertainty_table(u: &Uncertainty) -> String {
         num(u.s2),
         if u.jacobian_source.iter().all(|c| c == "proved") {
             "proved sensitivities".to_string()
+        } else if u.jacobian_source.iter().all(|c| *c == u.jacobian_source[0]) {
+            u.jacobian_source[0].clone()
         } else {
             u.names
                 .iter()

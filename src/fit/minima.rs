@@ -112,3 +112,55 @@ pub fn cluster(
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::ModelKind;
+
+    fn set(kappa: f64) -> NdParams<f64> {
+        NdParams::new(ModelKind::Shc, 1.0, 0.0, kappa, 0.01, 1.3, 1.3).unwrap()
+    }
+
+    fn start(i: usize, kappa: f64, j: f64) -> StartResult {
+        StartResult {
+            start: i,
+            initial: set(0.5),
+            base: set(kappa),
+            j,
+            iterations: 1,
+            evaluations: 1,
+            converged: true,
+            at_bound: vec![],
+        }
+    }
+
+    /// Two wells in κ, at 0.3 and 0.7, with a ridge at 0.5.
+    fn wells(p: &NdParams<f64>) -> f64 {
+        let k = p.kappa;
+        ((k - 0.3) * (k - 0.7)).powi(2) + 0.01 * (k - 0.3).abs().min((k - 0.7).abs()) + 1.0
+    }
+
+    #[test]
+    fn wells_apart_two_clusters_the_same_well_one() {
+        let starts = vec![
+            start(0, 0.3, wells(&set(0.3))),
+            start(1, 0.7, wells(&set(0.7))),
+            start(2, 0.30001, wells(&set(0.30001))),
+            start(3, 0.3, wells(&set(0.3))),
+        ];
+        let m = cluster(&starts, &wells, 1.0, 3.84);
+        assert_eq!(m.len(), 2, "{m:?}");
+        let mut sizes: Vec<usize> = m.iter().map(|m| m.starts.len()).collect();
+        sizes.sort();
+        assert_eq!(sizes, vec![1, 3]);
+        // Δχ² relative to the best
+        assert_eq!(m[0].delta_chi2, 0.0);
+        assert!(m.iter().all(|m| m.indistinguishable));
+        let m = cluster(&starts, &wells, 1e-9, 3.84);
+        assert!(m.iter().all(|m| m.delta_chi2 >= 0.0));
+        // a flat valley: one cluster
+        let flat = |_: &NdParams<f64>| 1.0;
+        assert_eq!(cluster(&starts, &flat, 1.0, 3.84).len(), 1);
+    }
+}
