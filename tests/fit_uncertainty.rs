@@ -135,9 +135,9 @@ fn jacobian_matches_central_differences_and_covariance_is_s2_inverse_jtj() {
         assert_eq!(u.s2, res.stats.s2);
         assert!((res.stats.s2 - res.best.j.powi(2) / 8.0).abs() <= 1e-15 + 1e-12 * s2);
         let want = [[d / det, -b / det], [-b / det, a / det]];
-        for r in 0..2 {
-            for c in 0..2 {
-                let w = u.s2 * want[r][c];
+        for (r, row) in want.iter().enumerate() {
+            for (c, &x) in row.iter().enumerate() {
+                let w = u.s2 * x;
                 assert!(
                     (u.covariance[r][c] - w).abs() <= 1e-8 * w.abs().max(1e-300),
                     "{noise}: C[{r}][{c}] = {} vs {w}",
@@ -456,8 +456,8 @@ fn weighted_j_of_the_cli_is_the_hand_computation_and_fix_is_exact() {
     let d = CorData::read(&synthetic()).unwrap();
     let mut csv = String::from("v0,e,sigma\n");
     let sig: Vec<f64> = (0..d.len()).map(|i| 0.004 + 0.0005 * i as f64).collect();
-    for i in 0..d.len() {
-        csv.push_str(&format!("{},{},{}\n", d.v0[i], d.e[i], sig[i]));
+    for (i, s) in sig.iter().enumerate() {
+        csv.push_str(&format!("{},{},{s}\n", d.v0[i], d.e[i]));
     }
     let f = scratch("sigma.csv", &csv);
     let o = bwcl(&[

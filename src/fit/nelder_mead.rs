@@ -101,7 +101,7 @@ impl FitOptions {
                 Slot::Free { lo, hi } if lo.is_infinite() && hi.is_infinite() => {
                     space.slots[5] = Slot::Fixed(1.0)
                 }
-                Slot::Fixed(v) if v == 1.0 => {}
+                Slot::Fixed(1.0) => {}
                 _ => return Err("--p1 fixes p = 1: p cannot also be fixed or bounded".into()),
             }
         }

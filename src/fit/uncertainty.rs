@@ -297,7 +297,7 @@ pub fn from_jacobian(
     let poorly = sv
         .iter()
         .zip(&directions)
-        .filter(|&(&s, _)| !(s > POOR * smax))
+        .filter(|&(&s, _)| s.is_nan() || s <= POOR * smax)
         .map(|(&s, d)| describe(&names, d, s / smax))
         .collect();
     Uncertainty {
