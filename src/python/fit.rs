@@ -2,6 +2,7 @@
 //! multi-start Nelder–Mead fit of P* inside 𝓟, with a progress callback.
 
 use super::arrays::put_f64;
+use super::cli::CliError;
 use super::cli::args::{Command, CostArgs, FitArgs, ProfileArgs};
 use super::cli::fit::{fit_options, fit_out, fit_uncertainty, read_data, search_weights};
 use super::cli::input::nd_error;
@@ -16,6 +17,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
+
+/// A CLI error's message.
+fn cli_text(e: CliError) -> String {
+    match e {
+        CliError::Input(m) | CliError::Failed(m) => m,
+    }
+}
 
 /// The data: the arrays when given (checked pair by pair), else the CSV file of --data.
 fn data_of(
@@ -154,15 +162,12 @@ pub fn fit<'py>(
         // the report of the CLI's JSON: minima, statistics and (uncertainty=True) the
         // uncertainty at every minimum
         let unc = if a.uncertainty {
-            Some(
-                fit_uncertainty(&res, &res.best.base, &data, a.jacobian)
-                    .map_err(|e| e.to_string())?,
-            )
+            Some(fit_uncertainty(&res, &res.best.base, &data, a.jacobian).map_err(cli_text)?)
         } else {
             None
         };
         let report = fit_out(&a, &res, &data, unc)
-            .map_err(|e| e.to_string())
+            .map_err(cli_text)
             .and_then(|o| serde_json::to_string(&o).map_err(|e| e.to_string()))?;
         Ok::<_, String>((res, curve, report))
     })?;
