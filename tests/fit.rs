@@ -254,8 +254,13 @@ fn fit_recovers_j_to_the_noise_level_on_the_synthetic_data() {
     ]);
     let secs = t0.elapsed().as_secs_f64();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
-    // stderr is not a terminal here: no progress bar
-    assert!(o.stderr.is_empty(), "{}", text(&o.stderr));
+    // stderr is not a terminal here: no progress bar (at most the warning of several minima
+    // within the noise)
+    let err = text(&o.stderr);
+    assert!(
+        err.is_empty() || (err.lines().count() == 1 && err.contains("do not determine P*")),
+        "{err}"
+    );
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     let j = v["J"].as_f64().unwrap();
     let noise = 20f64.sqrt() * 0.005;

@@ -37,6 +37,7 @@ NumPy arrays: they pickle, and so do the functions (for Dask, see ``examples/das
 
 from __future__ import annotations
 
+import json
 import numbers
 import os
 import sys
@@ -59,6 +60,7 @@ __all__ = [
     "identify",
     "identify_dask",
     "IdentifyResult",
+    "profile",
     "CorResult",
     "RigorousResult",
     "TrajectoryResult",
@@ -410,6 +412,23 @@ class FitResult(CostResult):
     evaluations: int = 0
     seconds: float = 0.0
     starts: Tuple[FitStart, ...] = field(default_factory=tuple)
+    #: the distinct minima, best first: dicts with P_star, base, J, basin_size, starts,
+    #: delta_chi2, indistinguishable, converged, at_bound (and uncertainty with
+    #: ``uncertainty=True``), as the CLI's JSON
+    minima: Tuple[dict, ...] = field(default_factory=tuple)
+    #: the uncertainty at the best fit (``uncertainty=True``): names, theta, jacobian,
+    #: jacobian_source, s2, covariance, std_errors, correlation, singular_values, directions,
+    #: condition_number, poorly_determined
+    uncertainty: Optional[dict] = None
+    #: χ² = J², J²/(M_res − k), the scale s² of Δχ² and the covariance, the free parameters
+    chi2: float = float("nan")
+    reduced_chi2: float = float("nan")
+    s2: float = float("nan")
+    free: Tuple[str, ...] = field(default_factory=tuple)
+    converged: bool = True
+    at_bound: Tuple[str, ...] = field(default_factory=tuple)
+    #: the whole JSON report of the CLI's ``fit --format json``
+    report: dict = field(default_factory=dict)
 
 
 class FitProgress(NamedTuple):
@@ -791,11 +810,19 @@ def fit(
     *,
     v0: Any = None,
     e: Any = None,
-    starts: int = 4,
+    starts: int = 8,
     seed: int = 1,
     max_iter: int = 300,
     init: Any = None,
     p1: bool = False,
+    fix: Optional[dict] = None,
+    bounds: Optional[dict] = None,
+    error: Optional[float] = None,
+    tc_error: Optional[float] = None,
+    use_tc: bool = True,
+    uncertainty: bool = False,
+    jacobian: str = "central",
+    cluster: bool = True,
     progress: Union[None, bool, Callable[[FitProgress], Any]] = None,
     threads: Optional[int] = None,
 ) -> FitResult:
@@ -810,6 +837,15 @@ def fit(
     data : a CSV file with the header v0,e — or give the arrays ``v0`` and ``e``.
     starts : random starts, 0 ≤ N ≤ 256 (0 needs ``init``); ``seed``: their seed.
     max_iter : Nelder–Mead iterations per run, 1 ≤ M ≤ 10000.
+    fix : {name: value} held fixed (names B_b, Gamma_b, kappa, sigma_b, n, p; Greek too).
+    bounds : {name: (lo, hi)} searched within bounds.
+    error, tc_error : the error of every CoR / contact duration without a ``sigma`` /
+        ``tc_sigma`` column value; ``use_tc=False`` ignores a ``tc`` column.
+    uncertainty : the Jacobian, covariance, standard errors, correlations and SVD at the best
+        fit (``result.uncertainty``) and at every minimum (``result.minima[i]["uncertainty"]``);
+        ``jacobian``: "central" (central differences of the f64 engine) or "proved" (the proved
+        sensitivities' midpoints: exact to ~1e-8, but M·k variational runs).
+    cluster : cluster the starts into distinct minima (``result.minima``).
     progress : a callable receiving a :class:`FitProgress` after every iteration, or True for
         a progress bar (tqdm when installed). An exception it raises is raised when the fit
         returns.
@@ -823,6 +859,11 @@ def fit(
         argv.append("--init=" + _six(init, "init", False))
     if p1:
         argv.append("--p1")
+    argv += _search(fix, bounds, error, tc_error, use_tc)
+    if uncertainty:
+        argv += ["--uncertainty", f"--jacobian={jacobian}"]
+    if not cluster:
+        argv.append("--no-cluster")
     cb = None
     if progress is True:
         progress = _text_progress()
@@ -840,8 +881,76 @@ def fit(
                  converged=s["converged"])
         for s in d["starts"]
     )
+    r = json.loads(d["report"])
     return _cost_result(FitResult, d, p1=d["p1"], seed=d["seed"], evaluations=d["evaluations"],
-                        seconds=d["seconds"], starts=starts_out)
+                        seconds=d["seconds"], starts=starts_out, minima=tuple(r["minima"]),
+                        uncertainty=r.get("uncertainty"), chi2=r["chi2"],
+                        reduced_chi2=_float(r["reduced_chi2"]), s2=_float(r["s2"]),
+                        free=tuple(r["free"]), converged=r["converged"],
+                        at_bound=tuple(r["at_bound"]), report=r)
+
+
+def _float(x: Any) -> float:
+    """A JSON number, or NaN for null (a non-finite value)."""
+    return float("nan") if x is None else float(x)
+
+
+def _search(fix: Optional[dict], bounds: Optional[dict], error: Optional[float],
+            tc_error: Optional[float], use_tc: bool) -> list:
+    """The CLI's --fix, --bounds, --error, --tc-error and --no-tc."""
+    out = []
+    if fix:
+        if not isinstance(fix, dict):
+            raise TypeError(f"fix: expected a dict name -> value, got {type(fix).__name__}")
+        out.append("--fix=" + ",".join(f"{k}={_num(v, 'fix')}" for k, v in fix.items()))
+    if bounds:
+        if not isinstance(bounds, dict):
+            raise TypeError(f"bounds: expected a dict name -> (lo, hi), got {type(bounds).__name__}")
+        items = []
+        for k, v in bounds.items():
+            lo, hi = v
+            items.append(f"{k}={_num(lo, 'bounds')}..{_num(hi, 'bounds')}")
+        out.append("--bounds=" + ",".join(items))
+    if error is not None:
+        out.append(f"--error={_num(error, 'error')}")
+    if tc_error is not None:
+        out.append(f"--tc-error={_num(tc_error, 'tc_error')}")
+    if not use_tc:
+        out.append("--no-tc")
+    return out
+
+
+def profile(
+    model: str,
+    data: Any = None,
+    *,
+    v0: Any = None,
+    e: Any = None,
+    param: Optional[str] = None,
+    points: int = 21,
+    starts: int = 8,
+    seed: int = 1,
+    max_iter: int = 300,
+    fix: Optional[dict] = None,
+    bounds: Optional[dict] = None,
+    error: Optional[float] = None,
+    tc_error: Optional[float] = None,
+    use_tc: bool = True,
+    threads: Optional[int] = None,
+) -> dict:
+    """Fit (as :func:`fit`), then profile J along each free parameter (or ``param``) with the
+    others re-optimized, as the CLI's ``profile``: a dict with the best fit (P_star, base, J,
+    s2, threshold) and ``profiles``, one per parameter: name, best_value, J_min, points (value,
+    J, delta_chi2, p_star, converged) and the 95 % likelihood-ratio interval ``lo``/``hi``
+    ({"value", "open"}: open where it reaches the grid's end)."""
+    data_arg, a, b = _data_args(data, v0, e)
+    argv = ["profile"] + _source(model, None, None, None, False) + [data_arg]
+    argv += [f"--points={_num(points, 'points')}", f"--starts={_num(starts, 'starts')}",
+             f"--seed={_num(seed, 'seed')}", f"--max-iter={_num(max_iter, 'max_iter')}"]
+    if param is not None:
+        argv.append(f"--param={param}")
+    argv += _search(fix, bounds, error, tc_error, use_tc)
+    return json.loads(_bwcl.profile(argv, v0=a, e=b, threads=_threads(threads)))
 
 
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402

@@ -45,6 +45,7 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
         Command::Fit(a) => super::fit::fit(&a),
         Command::Cost(a) => super::fit::cost(&a),
         Command::Identify(a) => super::identify::identify(&a),
+        Command::Profile(a) => super::profile::profile(&a),
         Command::Prove(p) => match p.what {
             super::args::ProveCommand::Monotone(m) => super::band::monotone(&m),
         },

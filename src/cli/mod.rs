@@ -11,6 +11,7 @@ pub(crate) mod identify;
 pub(crate) mod input;
 pub(crate) mod output;
 pub(crate) mod precise;
+pub(crate) mod profile;
 pub(crate) mod progress;
 
 use bwcl::fit::data::echo;

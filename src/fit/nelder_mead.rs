@@ -9,10 +9,18 @@
 //! [`FitOptions::restarts`] times from its best vertex with a fresh simplex of half that edge
 //! (at most `max_iter` iterations each), the usual cure for a simplex that collapsed early.
 //! The starts run in parallel, and inside each J the speeds run in parallel (rayon).
+//!
+//! The search space is a [`Space`] (`--fix`, `--bounds`) mapped by [`SpaceMap`], J the weighted
+//! cost of [`Weights`] (the paper's J with unit weights). After the runs, the end points are
+//! clustered into distinct minima ([`super::minima`]).
 
-use super::cost::cost;
+use super::chi2::chi2_quantile;
+use super::cost::weighted_cost;
 use super::data::CorData;
-use super::reparam::Reparam;
+use super::minima::{Minimum, cluster};
+use super::reparam::SpaceMap;
+use super::space::{Slot, Space};
+use super::weights::Weights;
 use crate::models::{ModelKind, NdParams};
 use crate::observables::FloatOptions;
 use argmin::core::observers::{Observe, ObserverMode};
@@ -46,6 +54,12 @@ pub struct FitOptions {
     pub initial: Vec<NdParams<f64>>,
     /// The f64 engine's settings for every CoR (the paper's by default).
     pub float: FloatOptions,
+    /// Fixed and bounded parameters (`None`: all free over 𝓟, p = 1 with `p1`).
+    pub space: Option<Space>,
+    /// The residuals' errors (`None`: [`Weights::unit`], the paper's J).
+    pub weights: Option<Weights>,
+    /// Cluster the end points into distinct minima (hill–valley; a few J evaluations per pair).
+    pub cluster: bool,
 }
 
 impl Default for FitOptions {
@@ -60,9 +74,46 @@ impl Default for FitOptions {
             p1: false,
             initial: Vec::new(),
             float: FloatOptions::default(),
+            space: None,
+            weights: None,
+            cluster: true,
         }
     }
 }
+
+impl FitOptions {
+    /// The map of the search space: `space` (with `p1`: p must be free without bounds there,
+    /// and is fixed to 1), or all of 𝓟.
+    pub fn space_map(&self, kind: ModelKind) -> Result<SpaceMap, String> {
+        let Some(space) = &self.space else {
+            return Ok(SpaceMap::unbounded(kind, self.p1));
+        };
+        if space.kind != kind {
+            return Err(format!(
+                "the space is of model {}, the fit of {}",
+                space.kind.name(),
+                kind.name()
+            ));
+        }
+        let mut space = space.clone();
+        if self.p1 {
+            match space.slots[5] {
+                Slot::Free { lo, hi } if lo.is_infinite() && hi.is_infinite() => {
+                    space.slots[5] = Slot::Fixed(1.0)
+                }
+                Slot::Fixed(1.0) => {}
+                _ => return Err("--p1 fixes p = 1: p cannot also be fixed or bounded".into()),
+            }
+        }
+        if space.free().is_empty() {
+            return Err("every parameter is fixed: nothing to fit".into());
+        }
+        Ok(SpaceMap::new(space))
+    }
+}
+
+/// Distance (relative to the bound range) within which a result is reported "at bound".
+pub const AT_BOUND: f64 = 1e-6;
 
 /// What the fit reports while it runs.
 #[derive(Clone, Debug)]
@@ -97,6 +148,49 @@ pub struct StartResult {
     pub evaluations: usize,
     /// Whether the last run stopped on the tolerance (not on the iteration budget).
     pub converged: bool,
+    /// The bounded parameters within [`AT_BOUND`] of a bound at `base`.
+    pub at_bound: Vec<&'static str>,
+}
+
+/// The statistics of a fit's residuals.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitStats {
+    /// M_res, the number of residuals (M, or 2M with durations).
+    pub m_res: usize,
+    /// k, the number of free parameters.
+    pub k: usize,
+    /// The scale s² of χ²: J_best²/(M_res − k) without given errors (∞ if M_res ≤ k), else 1.
+    pub s2: f64,
+    /// χ²_0.95(k).
+    pub crit: f64,
+}
+
+impl FitStats {
+    /// The statistics of a best cost `j` (see [`FitStats::s2`]).
+    pub fn new(j: f64, m_res: usize, k: usize, errors_given: bool) -> Self {
+        let s2 = if errors_given {
+            1.0
+        } else if m_res > k {
+            j * j / (m_res - k) as f64
+        } else {
+            f64::INFINITY
+        };
+        Self {
+            m_res,
+            k,
+            s2,
+            crit: chi2_quantile(k.max(1), 0.95),
+        }
+    }
+
+    /// χ² = J² over its degrees of freedom M_res − k (NaN without any).
+    pub fn reduced_chi2(&self, j: f64) -> f64 {
+        if self.m_res > self.k {
+            j * j / (self.m_res - self.k) as f64
+        } else {
+            f64::NAN
+        }
+    }
 }
 
 /// The outcome of a fit.
@@ -108,6 +202,12 @@ pub struct FitResult {
     pub best: StartResult,
     /// Every start, in start order.
     pub starts: Vec<StartResult>,
+    /// The distinct minima, best first (one per start without clustering).
+    pub minima: Vec<Minimum>,
+    pub stats: FitStats,
+    /// The search space's map and the residuals' errors that were used.
+    pub map: SpaceMap,
+    pub weights: Weights,
     /// Cost evaluations in all (each one M CoRs).
     pub evaluations: usize,
     pub elapsed: Duration,
@@ -116,8 +216,9 @@ pub struct FitResult {
 /// J as a function of the reparametrized coordinates.
 struct Objective<'a> {
     kind: ModelKind,
-    reparam: Reparam,
+    map: &'a SpaceMap,
     data: &'a CorData,
+    weights: &'a Weights,
     float: &'a FloatOptions,
     evals: &'a AtomicUsize,
 }
@@ -127,10 +228,10 @@ impl CostFunction for Objective<'_> {
     type Output = f64;
     fn cost(&self, u: &Vec<f64>) -> Result<f64, Error> {
         self.evals.fetch_add(1, Ordering::Relaxed);
-        Ok(match self.reparam.to_params(u) {
-            Ok(base) => cost(self.kind, &base, self.data, self.float),
-            // only a NaN coordinate gets here; the simplex never makes one from finite J
-            Err(_) => 1e3,
+        Ok(match self.map.to_params(u) {
+            Ok(base) => weighted_cost(self.kind, &base, self.data, self.weights, self.float),
+            // a NaN coordinate, or a B for which a bounded Γ has no admissible value
+            Err(_) => 1e3 / min_error(self.weights),
         })
     }
 }
@@ -152,9 +253,18 @@ impl Observe<IterState<Vec<f64>, (), (), (), (), f64>> for Observer {
     }
 }
 
-/// A random start: log-uniform B_b ∈ [0.05, 5], σ_b ∈ [1e−3, 0.1], Γ/B = tanh(U[−3, 3]),
-/// κ = logistic(U[−3, 3]), n = 1 + exp(U[−3, 1]), p = floor + exp(U[−2, 1]).
-fn random_start(rng: &mut ChaCha8Rng, dim: usize) -> Vec<f64> {
+/// The smallest error of any residual (the scale of the penalty of a point without image).
+fn min_error(w: &Weights) -> f64 {
+    w.e.iter()
+        .chain(w.tc.iter().flatten().map(|(_, s)| s))
+        .fold(f64::INFINITY, |a, &b| a.min(b))
+        .min(1.0)
+}
+
+/// A random start, a coordinate per free parameter: log-uniform B_b ∈ [0.05, 5], σ_b ∈
+/// [1e−3, 0.1], Γ/B = tanh(U[−3, 3]), κ = logistic(U[−3, 3]), n = 1 + exp(U[−3, 1]),
+/// p = floor + exp(U[−2, 1]); a bounded parameter lo + (hi − lo) logistic(U[−3, 3]).
+fn random_start(rng: &mut ChaCha8Rng, map: &SpaceMap) -> Vec<f64> {
     let ranges = [
         (0.05f64.ln(), 5f64.ln()),
         (-3.0, 3.0),
@@ -163,9 +273,17 @@ fn random_start(rng: &mut ChaCha8Rng, dim: usize) -> Vec<f64> {
         (-3.0, 1.0),
         (-2.0, 1.0),
     ];
-    ranges[..dim]
-        .iter()
-        .map(|&(a, b)| a + (b - a) * rng.random::<f64>())
+    map.space
+        .free()
+        .into_iter()
+        .map(|i| {
+            let (a, b) = if map.bounds(i).is_some() {
+                (-3.0, 3.0)
+            } else {
+                ranges[i]
+            };
+            a + (b - a) * rng.random::<f64>()
+        })
         .collect()
 }
 
@@ -185,59 +303,131 @@ pub fn fit(
     if !(opts.simplex_step.is_finite() && opts.simplex_step > 0.0) {
         return Err(format!("simplex step {} must be > 0", opts.simplex_step));
     }
-    let reparam = Reparam::new(kind, opts.p1);
-    let dim = reparam.dim();
+    let map = opts.space_map(kind)?;
+    let weights = opts.weights.clone().unwrap_or_else(|| Weights::unit(data));
+    if weights.e.len() != data.len() {
+        return Err(format!(
+            "{} errors for {} data rows",
+            weights.e.len(),
+            data.len()
+        ));
+    }
     let mut points = Vec::new();
     for (i, p) in opts.initial.iter().enumerate() {
         points.push(
-            reparam
-                .from_params(p)
+            map.from_params(p)
                 .map_err(|e| format!("initial set {}: {e}", i + 1))?,
         );
     }
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     for _ in 0..opts.starts {
-        points.push(random_start(&mut rng, dim));
+        points.push(random_start(&mut rng, &map));
     }
     let progress = progress.unwrap_or_else(|| Arc::new(|_| {}));
     let t0 = Instant::now();
     let evals = AtomicUsize::new(0);
+    let problem = Problem {
+        kind,
+        map: &map,
+        data,
+        weights: &weights,
+        opts,
+    };
     let starts: Vec<StartResult> = points
         .par_iter()
         .enumerate()
-        .map(|(i, u0)| run_start(kind, reparam, data, opts, i, u0, &evals, &progress))
+        .map(|(i, u0)| problem.run(i, u0, opts.simplex_step, &evals, &progress))
         .collect::<Result<_, _>>()?;
     let best = starts
         .iter()
         .min_by(|a, b| a.j.total_cmp(&b.j))
         .cloned()
         .expect("at least one start");
+    let stats = FitStats::new(
+        best.j,
+        weights.residual_count(),
+        map.dim(),
+        weights.errors_given,
+    );
+    let minima = if opts.cluster {
+        let j = |p: &NdParams<f64>| {
+            evals.fetch_add(1, Ordering::Relaxed);
+            weighted_cost(kind, p, data, &weights, &opts.float)
+        };
+        cluster(&starts, &j, stats.s2, stats.crit)
+    } else {
+        let mut all: Vec<Minimum> = starts
+            .iter()
+            .map(|s| Minimum {
+                base: s.base.clone(),
+                j: s.j,
+                starts: vec![s.start],
+                converged: s.converged,
+                at_bound: s.at_bound.clone(),
+                delta_chi2: 0.0,
+                indistinguishable: true,
+            })
+            .collect();
+        all.sort_by(|x, y| x.j.total_cmp(&y.j));
+        for m in &mut all {
+            m.delta_chi2 = (m.j * m.j - best.j * best.j) / stats.s2;
+            m.indistinguishable = m.delta_chi2 <= stats.crit;
+        }
+        all
+    };
     Ok(FitResult {
         kind,
         p1: opts.p1,
         best,
         starts,
+        minima,
+        stats,
+        map: map.clone(),
+        weights: weights.clone(),
         evaluations: evals.load(Ordering::Relaxed),
         elapsed: t0.elapsed(),
     })
 }
 
-#[allow(clippy::too_many_arguments)]
+/// One minimization problem: J of `data` over the space of `map`.
+pub struct Problem<'a> {
+    pub kind: ModelKind,
+    pub map: &'a SpaceMap,
+    pub data: &'a CorData,
+    pub weights: &'a Weights,
+    pub opts: &'a FitOptions,
+}
+
+impl Problem<'_> {
+    /// One Nelder–Mead run from coordinates `u0` with initial simplex edge `step`, restarted
+    /// as in the module doc.
+    pub fn run(
+        &self,
+        start: usize,
+        u0: &[f64],
+        step: f64,
+        total: &AtomicUsize,
+        progress: &ProgressFn,
+    ) -> Result<StartResult, String> {
+        run_start(self, start, u0, step, total, progress)
+    }
+}
+
 fn run_start(
-    kind: ModelKind,
-    reparam: Reparam,
-    data: &CorData,
-    opts: &FitOptions,
+    pb: &Problem,
     start: usize,
     u0: &[f64],
+    step: f64,
     total: &AtomicUsize,
     progress: &ProgressFn,
 ) -> Result<StartResult, String> {
+    let opts = pb.opts;
     let mine = AtomicUsize::new(0);
     let obj = |evals| Objective {
-        kind,
-        reparam,
-        data,
+        kind: pb.kind,
+        map: pb.map,
+        data: pb.data,
+        weights: pb.weights,
         float: &opts.float,
         evals,
     };
@@ -245,7 +435,7 @@ fn run_start(
     let mut best_j = f64::INFINITY;
     let mut iterations = 0;
     let mut converged = false;
-    let mut step = opts.simplex_step;
+    let mut step = step;
     for run in 0..=opts.restarts {
         let mut simplex = vec![best_u.clone()];
         for k in 0..best_u.len() {
@@ -290,11 +480,14 @@ fn run_start(
         iterations,
         budget,
     });
-    let as_params = |u: &[f64]| reparam.to_params(u).map_err(|e| e.to_string());
+    let as_params = |u: &[f64]| pb.map.to_params(u).map_err(|e| e.to_string());
+    let base = as_params(&best_u)?;
     Ok(StartResult {
         start,
-        initial: as_params(u0)?,
-        base: as_params(&best_u)?,
+        // a start without image (a bounded Γ empty for its B) is reported by its end point
+        initial: as_params(u0).unwrap_or_else(|_| base.clone()),
+        at_bound: pb.map.at_bounds(&base, AT_BOUND),
+        base,
         j: best_j,
         iterations,
         evaluations: n,

@@ -2,8 +2,9 @@
 //! multi-start Nelder–Mead fit of P* inside 𝓟, with a progress callback.
 
 use super::arrays::put_f64;
-use super::cli::args::{Command, CostArgs, FitArgs};
-use super::cli::fit::{fit_options, read_data};
+use super::cli::CliError;
+use super::cli::args::{Command, CostArgs, FitArgs, ProfileArgs};
+use super::cli::fit::{fit_options, fit_out, fit_uncertainty, read_data, search_weights};
 use super::cli::input::nd_error;
 use super::run::{compute, parse, py_error};
 use bwcl::fit::nelder_mead::ProgressFn;
@@ -16,6 +17,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
+
+/// A CLI error's message.
+fn cli_text(e: CliError) -> String {
+    match e {
+        CliError::Input(m) | CliError::Failed(m) => m,
+    }
+}
 
 /// The data: the arrays when given (checked pair by pair), else the CSV file of --data.
 fn data_of(
@@ -101,7 +109,8 @@ pub fn fit<'py>(
     let a: FitArgs = a;
     let kind = ModelKind::from(a.model);
     let data = data_of(&a.data, v0, e)?;
-    let opts = fit_options(&a).map_err(py_error)?;
+    let mut opts = fit_options(&a).map_err(py_error)?;
+    opts.weights = Some(search_weights(&data, &a.search).map_err(py_error)?);
     let n_starts = (opts.starts + opts.initial.len()) as u64;
     let total = n_starts * opts.max_iter * (1 + opts.restarts as u64);
     let raised: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
@@ -148,16 +157,24 @@ pub fn fit<'py>(
         f
     });
     let res = compute(py, threads, || {
-        let res = run_fit(kind, &data, &opts, callback);
-        res.map(|r| {
-            let curve = model_curve(kind, &r.best.base, &data, &FloatOptions::default());
-            (r, curve)
-        })
+        let res = run_fit(kind, &data, &opts, callback)?;
+        let curve = model_curve(kind, &res.best.base, &data, &FloatOptions::default());
+        // the report of the CLI's JSON: minima, statistics and (uncertainty=True) the
+        // uncertainty at every minimum
+        let unc = if a.uncertainty {
+            Some(fit_uncertainty(&res, &res.best.base, &data, a.jacobian).map_err(cli_text)?)
+        } else {
+            None
+        };
+        let report = fit_out(&a, &res, &data, unc)
+            .map_err(cli_text)
+            .and_then(|o| serde_json::to_string(&o).map_err(|e| e.to_string()))?;
+        Ok::<_, String>((res, curve, report))
     })?;
     if let Some(e) = raised.lock().ok().and_then(|mut e| e.take()) {
         return Err(e);
     }
-    let (res, curve) = res.map_err(PyRuntimeError::new_err)?;
+    let (res, curve, report) = res.map_err(PyRuntimeError::new_err)?;
     let d = PyDict::new(py);
     d.set_item("model", kind.name())?;
     d.set_item("base", base_tuple(&res.best.base))?;
@@ -179,5 +196,28 @@ pub fn fit<'py>(
         starts.append(sd)?;
     }
     d.set_item("starts", starts)?;
+    d.set_item("report", report)?;
     Ok(d)
+}
+
+/// The profiles (see `bwcl.profile`): the CLI's JSON report as a string.
+#[pyfunction]
+#[pyo3(signature = (argv, v0=None, e=None, threads=None))]
+pub fn profile<'py>(
+    py: Python<'py>,
+    argv: Vec<String>,
+    v0: Option<PyReadonlyArray1<'py, f64>>,
+    e: Option<PyReadonlyArray1<'py, f64>>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let Command::Profile(a): Command = parse(&argv)?.command else {
+        return Err(PyValueError::new_err("not a profile command"));
+    };
+    let a: ProfileArgs = a;
+    let data = data_of(&a.data, v0, e)?;
+    let out = compute(py, threads, || {
+        super::cli::profile::compute(&a, &data, &indicatif::ProgressBar::hidden())
+    })?;
+    let out = out.map_err(py_error)?;
+    serde_json::to_string(&out).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }

@@ -41,6 +41,7 @@ fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
     m.add_function(wrap_pyfunction!(fit::cost, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::profile, m)?)?;
     m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;
