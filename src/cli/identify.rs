@@ -2,10 +2,10 @@
 //! [`bwcl::identify`]).
 
 use super::args::{IdentifyArgs, IdentifyFormat};
+use super::fit::read_data;
 use super::output::{self, outward};
 use super::progress::Progress;
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
-use super::fit::read_data;
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
 use bwcl::identify::setup::{Spec, problem};
 use bwcl::models::ModelKind;

@@ -96,7 +96,10 @@ pub fn note(line: &str) {
 fn clap_error(e: clap::Error) -> i32 {
     match e.kind() {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            report("a subcommand is needed: cor, trajectory, loop, fit or cost (see --help)");
+            report(
+                "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, identify or \
+                 prove (see --help)",
+            );
             EXIT_BAD_INPUT
         }
         ErrorKind::InvalidUtf8 => {
