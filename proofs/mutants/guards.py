@@ -20,16 +20,6 @@ TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
 # must see it: TESTS when not given])
 GUARDS = [
     # issue #31: set-membership identification (the paving's claims)
-    ("identify-violated-outer", "src/identify/paving.rs",
-     [("            if y.is_empty() || y.disjoint(outer) {",
-       "            if y.is_empty() || y.disjoint(target.inner().unwrap_or(outer)) {")],
-     "a box proved infeasible only when its enclosure misses the outer target (the inner taken)",
-     ["--test", "identify"]),
-    ("identify-feasible-inner", "src/identify/paving.rs",
-     [("            if target.inner().is_some_and(|i| y.subset(i)) {",
-       "            if y.subset(outer) {")],
-     "a row settled on a box only inside the inner target (the outer taken)",
-     ["--test", "identify"]),
     ("identify-form-slopes", "src/identify/form.rs",
      [("        y += term(gj, uj, cj);", "")],
      "the slope terms of the mean-value form over a box (the centre's value alone)",
