@@ -549,8 +549,10 @@ impl Ctx<'_> {
     }
 }
 
+/// `BWCL_TRACE_IDENTIFY` set: the runs' times on stderr (read once).
 fn trace() -> bool {
-    std::env::var_os("BWCL_TRACE_IDENTIFY").is_some()
+    static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ON.get_or_init(|| std::env::var_os("BWCL_TRACE_IDENTIFY").is_some())
 }
 
 /// A total order on f64 keys for the work queues.
@@ -665,7 +667,7 @@ pub fn pave(
             }
         }
         if let Some(f) = progress {
-            let mut undecided: f64 = nodes.iter().flatten().map(|n| keys(&n.u)[0]).sum();
+            let mut undecided: f64 = nodes.iter().flatten().map(|n| volume(&n.u, start)).sum();
             undecided += leaves
                 .iter()
                 .filter(|l| l.status == Status::Undecided)

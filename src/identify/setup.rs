@@ -23,7 +23,8 @@ pub struct Spec<'a> {
     pub no_tc: bool,
 }
 
-/// The value texts of a `name=value` list, by parameter (checked by `parse_fix` first).
+/// The value texts of a `name=value` or `name=lo..hi` list, by parameter (checked by
+/// `parse_fix` or `parse_bounds` first).
 fn values(text: &str) -> Vec<(usize, &str)> {
     text.split(',')
         .filter(|s| !s.trim().is_empty())
@@ -101,14 +102,7 @@ pub fn problem(
     }
     // the box: the doubles just outside the decimal ends
     let mut start = Vec::new();
-    let bound_texts: Vec<(usize, &str)> = bounds_text
-        .split(',')
-        .filter(|s| !s.trim().is_empty())
-        .filter_map(|item| {
-            let (n, r) = item.split_once('=')?;
-            Some((param_index(n)?, r.trim()))
-        })
-        .collect();
+    let bound_texts = values(bounds_text);
     for i in space.free() {
         let (_, r) = bound_texts.iter().find(|(j, _)| *j == i).expect("bounded");
         let (a, b) = r.split_once("..").expect("checked by parse_bounds");
