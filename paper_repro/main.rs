@@ -5,6 +5,7 @@
 //! ```text
 //! cargo run --release --bin paper-repro                  # float curves, loops, fit demo
 //! cargo run --release --bin paper-repro -- --rigorous    # + proved bands, 30-digit table
+//! cargo run --release --bin paper-repro -- --identifiability  # + minima, profiles, proved feasible sets
 //! cargo run --release --bin paper-repro -- synth         # rewrite paper_repro/data/synthetic_dss.csv
 //! ```
 
@@ -12,6 +13,7 @@ mod cor;
 mod demo;
 mod digits;
 mod font;
+mod ident;
 mod loops;
 mod plot;
 mod report;
@@ -44,6 +46,14 @@ pub struct Args {
     /// Largest thickness of the proved band (with --rigorous).
     #[arg(long, default_value_t = 1e-6)]
     pub band_thickness: f64,
+    /// Identifiability of the synthetic DSS case (issue #31): the distinct minima, the profiles
+    /// of J and the proved feasible sets in the (σ_b, κ) and (Γ_b, B_b) planes, from the CoRs
+    /// alone and with contact durations (several minutes).
+    #[arg(long)]
+    pub identifiability: bool,
+    /// Most seconds of each of the four pavings of --identifiability.
+    #[arg(long, default_value_t = 300.0)]
+    pub ident_seconds: f64,
     /// Coarse grids and a short fit (for tests).
     #[arg(long)]
     pub quick: bool,
@@ -282,6 +292,26 @@ fn run(args: Args) -> Result<(), String> {
     let d = demo::run(args.model, data, &opts, truth, sigma)?;
     files.extend(report::write_fit(&out, args.model, &d)?);
 
+    // identifiability (issue #31)
+    let ident = if args.identifiability {
+        if !(args.ident_seconds.is_finite() && args.ident_seconds > 0.0) {
+            return Err(format!(
+                "--ident-seconds {} must be > 0",
+                args.ident_seconds
+            ));
+        }
+        let seconds = if args.quick {
+            args.ident_seconds.min(5.0)
+        } else {
+            args.ident_seconds
+        };
+        let id = ident::run(args.quick, seconds)?;
+        files.extend(ident::write(&out, &id)?);
+        Some(id)
+    } else {
+        None
+    };
+
     let ctx = report::Context {
         args: &args,
         font,
@@ -294,6 +324,7 @@ fn run(args: Args) -> Result<(), String> {
         curves: &curves,
         v0: &v0,
         demo: &d,
+        ident: ident.as_ref(),
         data_path: &data_path,
         fit_opts: &opts,
         files: &files,

@@ -19,6 +19,12 @@ pub enum Series {
         filled: bool,
         points: Vec<(f64, f64)>,
     },
+    /// Filled rectangles (x0, y0, x1, y1), e.g. the boxes of a paving.
+    Rects {
+        label: String,
+        grey: u8,
+        rects: Vec<(f64, f64, f64, f64)>,
+    },
     /// A band between lo(x) and hi(x), drawn as a filled polygon and its two edges.
     Band {
         label: String,
@@ -110,6 +116,22 @@ where
                     .label(label)
                     .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
             }
+            Series::Rects {
+                label,
+                grey: g,
+                rects,
+            } => {
+                let col = grey(*g);
+                chart
+                    .draw_series(rects.iter().map(|&(x0, y0, x1, y1)| {
+                        Rectangle::new([(x0, y0), (x1, y1)], col.filled())
+                    }))
+                    .map_err(e)?
+                    .label(label)
+                    .legend(move |(x, y)| {
+                        Rectangle::new([(x, y - 5), (x + 20, y + 5)], col.filled())
+                    });
+            }
             Series::Band {
                 label,
                 grey: g,
@@ -152,6 +174,39 @@ where
         .map_err(e)?;
     area.present().map_err(e)?;
     Ok(())
+}
+
+/// Writes `stem.svg` and `stem.png`: the charts in a grid of `cols` columns, 800×600 each.
+pub fn save_grid(charts: &[Chart], cols: usize, stem: &Path) -> Result<Vec<String>, String> {
+    let cols = cols.max(1);
+    let rows = charts.len().div_ceil(cols).max(1);
+    let size = (800 * cols as u32, 600 * rows as u32);
+    let svg = stem.with_extension("svg");
+    let png = stem.with_extension("png");
+    fn all<DB: DrawingBackend>(
+        area: DrawingArea<DB, plotters::coord::Shift>,
+        charts: &[Chart],
+        grid: (usize, usize),
+    ) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        for (a, c) in area.split_evenly(grid).into_iter().zip(charts) {
+            draw(a, c)?;
+        }
+        Ok(())
+    }
+    all(
+        SVGBackend::new(&svg, size).into_drawing_area(),
+        charts,
+        (rows, cols),
+    )?;
+    all(
+        BitMapBackend::new(&png, size).into_drawing_area(),
+        charts,
+        (rows, cols),
+    )?;
+    Ok(vec![svg.display().to_string(), png.display().to_string()])
 }
 
 /// Writes `stem.svg` and `stem.png` (800×600).

@@ -301,6 +301,7 @@ pub struct Context<'a> {
     pub curves: &'a [Vec<Result<f64, String>>],
     pub v0: &'a [f64],
     pub demo: &'a Demo,
+    pub ident: Option<&'a crate::ident::Ident>,
     pub data_path: &'a Path,
     pub fit_opts: &'a FitOptions,
     pub files: &'a [String],
@@ -323,6 +324,9 @@ pub fn render(c: &Context) -> String {
     let mut cmd = String::from("cargo run --release --bin paper-repro --");
     if a.rigorous {
         cmd.push_str(" --rigorous");
+    }
+    if a.identifiability {
+        cmd.push_str(" --identifiability");
     }
     if a.quick {
         cmd.push_str(" --quick");
@@ -796,6 +800,15 @@ pub fn render(c: &Context) -> String {
     )
     .unwrap();
 
+    match c.ident {
+        Some(id) => crate::ident::render(&mut r, id),
+        None => writeln!(
+            r,
+            "## Identifiability (issue #31)\n\nNot run: `--identifiability` adds the distinct \
+             minima, the profiles and the proved feasible sets of the synthetic DSS case.\n"
+        )
+        .unwrap(),
+    }
     writeln!(r, "## What cannot be reproduced, and why\n").unwrap();
     writeln!(
         r,

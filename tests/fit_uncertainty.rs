@@ -513,3 +513,33 @@ fn weighted_j_of_the_cli_is_the_hand_computation_and_fix_is_exact() {
     assert!((v["chi2"].as_f64().unwrap() - j * j).abs() <= 1e-12 * j * j);
     assert!((v["reduced_chi2"].as_f64().unwrap() - j * j / 16.0).abs() <= 1e-12 * j * j);
 }
+
+/// `profile --plot`: one panel per profiled parameter, its grid points drawn, the threshold line.
+#[test]
+fn profile_plot_draws_every_grid_point() {
+    let s = synthetic();
+    let svg = scratch("profile.svg", "");
+    let o = bwcl(&[
+        "profile",
+        "--model",
+        "shc",
+        "--data",
+        s.to_str().unwrap(),
+        "--param",
+        "kappa",
+        "--points",
+        "5",
+        "--starts",
+        "2",
+        "--max-iter",
+        "60",
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    let t = std::fs::read_to_string(&svg).unwrap();
+    assert!(t.starts_with("<svg") && t.trim_end().ends_with("</svg>"));
+    assert_eq!(t.matches("<polyline").count(), 1, "one panel");
+    assert_eq!(t.matches("<circle").count(), 5, "five grid points");
+    assert!(t.contains(">kappa<") && t.contains("stroke-dasharray"));
+}

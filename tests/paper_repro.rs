@@ -71,3 +71,78 @@ fn regenerates_csvs_plots_and_report() {
         assert!(rep.contains(s), "REPORT.md lacks '{s}'");
     }
 }
+
+/// `paper-repro --quick --identifiability` (issue #31, item 5): the minima, profiles and pavings
+/// are written and reported, and no box proved infeasible holds the generating P*, whose f64
+/// residuals are within the bounded errors (e: 0.0095 ≤ 0.02, tc: 0.0397 ≤ 0.04).
+#[test]
+fn identifiability_section_and_sound_pavings() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("paper-repro-ident-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let report = dir.join("REPORT.md");
+    let o = Command::new(env!("CARGO_BIN_EXE_paper-repro"))
+        .args([
+            "--quick",
+            "--identifiability",
+            "--ident-seconds",
+            "4",
+            "--out",
+        ])
+        .arg(&dir)
+        .arg("--report")
+        .arg(&report)
+        .output()
+        .expect("paper-repro runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "ident_minima.csv",
+        "ident_profiles.csv",
+        "ident_pavings.csv",
+        "ident_profiles.svg",
+        "ident_profiles.png",
+        "ident_pavings.svg",
+        "ident_pavings.png",
+    ] {
+        let len = std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+        assert!(len > 100, "{f} missing or empty");
+    }
+    let rep = std::fs::read_to_string(&report).unwrap();
+    for s in [
+        "Identifiability (issue #31)",
+        "Distinct minima",
+        "Profiles",
+        "Proved feasible sets",
+    ] {
+        assert!(rep.contains(s), "REPORT.md lacks '{s}'");
+    }
+    // the generating point in each plane: (σ_b, κ) and (Γ_b, B_b)
+    let truth = |plane: &str| match plane {
+        "sigma_b-kappa" => (0.00715, 0.632),
+        "Gamma_b-B_b" => (-1.42, 1.43),
+        p => panic!("unknown plane {p}"),
+    };
+    let csv = std::fs::read_to_string(dir.join("ident_pavings.csv")).unwrap();
+    let (mut infeasible, mut planes) = (0, std::collections::BTreeSet::new());
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f.len(), 7, "{line}");
+        planes.insert((f[0].to_string(), f[1].to_string()));
+        if f[6] != "infeasible" {
+            continue;
+        }
+        infeasible += 1;
+        let n = |i: usize| f[i].parse::<f64>().unwrap();
+        let (x, y) = truth(f[1]);
+        let inside = n(2) <= x && x <= n(3) && n(4) <= y && y <= n(5);
+        assert!(
+            !inside,
+            "the generating P* is in a box proved infeasible: {line}"
+        );
+    }
+    assert_eq!(planes.len(), 4, "two data sets × two planes");
+    assert!(
+        infeasible > 0,
+        "no box was proved infeasible: the check is empty"
+    );
+}

@@ -732,3 +732,47 @@ fn progress_shows_on_a_terminal_only() {
     );
     assert!(!err.contains("settled"), "{err}");
 }
+
+/// A range of α in the physical parameters: κ = 1/(1 + (1/α − 1)A^p) uses α once, so its
+/// interval value stays inside (0, 1) and the range is proved (with κ = α/(α + (1 − α)A^p), α
+/// twice, sup κ > 1 and the range was refused as outside 𝓟). The enclosure holds the proved
+/// values at both ends of the range.
+#[test]
+fn a_range_of_alpha_is_proved_and_holds_its_ends() {
+    let phys = |alpha: &str| {
+        format!(
+            "m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha={alpha},beta=981.05,gamma=-961.4,A=0.925"
+        )
+    };
+    let run = |alpha: &str| {
+        let p = phys(alpha);
+        let (code, out, err) = verdict(
+            &[
+                "cor",
+                "--model",
+                "shc",
+                "--physical",
+                &p,
+                "--v0",
+                "2",
+                "--rigorous",
+                "--format",
+                "json",
+            ],
+            120,
+        );
+        assert_eq!(code, 0, "alpha={alpha}: {out}{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let e = &v[0]["e"];
+        (e[0].as_f64().unwrap(), e[1].as_f64().unwrap())
+    };
+    let hull = run("0.05..0.15");
+    for a in ["0.05", "0.15"] {
+        let end = run(a);
+        assert!(
+            hull.0 <= end.0 && end.1 <= hull.1,
+            "alpha={a}: {end:?} ⊄ {hull:?}"
+        );
+    }
+    assert!(hull.1 - hull.0 < 0.2, "{hull:?}");
+}

@@ -549,6 +549,10 @@ pub struct ProfileArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = ProfileFormat::Table)]
     pub format: ProfileFormat,
+    /// Draw the profiles to FILE.svg: Δχ² against each parameter, the χ²_0.95(1) threshold and
+    /// the 95 % interval.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
 }
 
 /// Output of `profile`.

@@ -125,8 +125,120 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
             s.into_bytes()
         }
     };
+    if let Some(p) = &a.plot {
+        output::emit(Some(p), svg(profiles, out.threshold).as_bytes())?;
+    }
     output::emit(None, &bytes)?;
     Ok(EXIT_OK)
+}
+
+/// The profiles as SVG, one panel per parameter: Δχ² = (J_p² − J_min²)/s² at the grid points
+/// (a polyline with marks; points whose re-optimization used its whole budget hollow), the
+/// threshold χ²_0.95(1) dashed, the 95 % interval shaded, the best fit's value a vertical line.
+pub fn svg(profiles: &[Profile], threshold: f64) -> String {
+    use std::fmt::Write;
+    const W: f64 = 300.0;
+    const H: f64 = 220.0;
+    const M: f64 = 55.0;
+    let cols = profiles.len().clamp(1, 3);
+    let rows = profiles.len().div_ceil(cols).max(1);
+    let (w, h) = (cols as f64 * (W + M) + M, rows as f64 * (H + M) + M / 2.0);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    for (k, p) in profiles.iter().enumerate() {
+        let (ox, oy) = (
+            M + (k % cols) as f64 * (W + M),
+            M / 2.0 + (k / cols) as f64 * (H + M),
+        );
+        let pts: Vec<(f64, f64, bool)> = p
+            .points
+            .iter()
+            .filter(|q| q.delta_chi2.is_finite())
+            .map(|q| (q.value, q.delta_chi2, q.converged))
+            .collect();
+        let (x0, x1) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), q| {
+                (a.min(q.0), b.max(q.0))
+            });
+        let (x0, x1) = if x1 > x0 {
+            (x0, x1)
+        } else {
+            (x0 - 1.0, x0 + 1.0)
+        };
+        let top = pts
+            .iter()
+            .map(|q| q.1)
+            .fold(2.0 * threshold, f64::max)
+            .min(20.0 * threshold);
+        let x = |v: f64| ox + W * (v - x0) / (x1 - x0);
+        let y = |v: f64| oy + H - H * (v.clamp(-0.05 * top, top) + 0.05 * top) / (1.05 * top);
+        let _ = writeln!(
+            s,
+            "<rect x=\"{ox}\" y=\"{oy}\" width=\"{W}\" height=\"{H}\" fill=\"none\" stroke=\"black\"/>"
+        );
+        // the interval, the threshold, the best value
+        let (a, b) = (x(p.lo.value.max(x0)), x(p.hi.value.min(x1)));
+        let _ = writeln!(
+            s,
+            "<rect x=\"{a:.2}\" y=\"{oy}\" width=\"{:.2}\" height=\"{H}\" fill=\"#cfe3f5\"/>\
+             <line x1=\"{ox}\" y1=\"{t:.2}\" x2=\"{:.2}\" y2=\"{t:.2}\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\
+             <line x1=\"{bx:.2}\" y1=\"{oy}\" x2=\"{bx:.2}\" y2=\"{:.2}\" stroke=\"#888\"/>",
+            (b - a).max(0.5),
+            ox + W,
+            oy + H,
+            t = y(threshold),
+            bx = x(p.best_value.clamp(x0, x1)),
+        );
+        let line: Vec<String> = pts
+            .iter()
+            .map(|q| format!("{:.2},{:.2}", x(q.0), y(q.1)))
+            .collect();
+        let _ = writeln!(
+            s,
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"#1f4e79\" stroke-width=\"1.5\"/>",
+            line.join(" ")
+        );
+        for q in &pts {
+            let fill = if q.2 { "#1f4e79" } else { "white" };
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"2.5\" fill=\"{fill}\" stroke=\"#1f4e79\"/>",
+                x(q.0),
+                y(q.1)
+            );
+        }
+        let lab = |v: f64| format!("{v:.4}");
+        let _ = writeln!(
+            s,
+            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\
+             <text x=\"{ox}\" y=\"{}\">{}</text><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"end\">0</text>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2}</text>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">Δχ²</text>",
+            ox + W / 2.0,
+            oy + H + 28.0,
+            p.name,
+            oy + H + 14.0,
+            lab(x0),
+            ox + W,
+            oy + H + 14.0,
+            lab(x1),
+            ox - 3.0,
+            y(0.0) + 4.0,
+            ox - 3.0,
+            y(threshold) + 4.0,
+            threshold,
+            ox - 30.0,
+            oy + H / 2.0,
+            ox - 30.0,
+            oy + H / 2.0,
+        );
+    }
+    s.push_str("</svg>\n");
+    s
 }
 
 /// Fits, then profiles (the work of `profile`), advancing `bar` per grid point.

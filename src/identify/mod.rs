@@ -13,9 +13,11 @@
 //!
 //! - [`problem`]: the constraints, the data's decimals enclosed;
 //! - [`form`]: mean-value forms over boxes from proved slopes, and the contractor they give;
+//! - [`guide`]: f64 guesses of which rows a rigorous attempt can decide on a box;
 //! - [`paving`]: the work queue (SIVIA with contractors, in parallel).
 
 pub mod form;
+pub mod guide;
 pub mod paving;
 pub mod problem;
 pub mod setup;

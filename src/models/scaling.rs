@@ -260,7 +260,12 @@ impl<R: Real> PhysicalParams<R> {
                 / self.a.clone();
         let b = common.clone() * self.beta.clone();
         let gamma = common * self.gamma.clone();
-        let kappa = self.alpha.clone() / d.clone();
+        // κ = α/D written with α once, 1/(1 + (1/α − 1)A^p): over a range of α (and of A, p)
+        // its interval value is the exact range, inside (0, 1); α/D would use α twice and
+        // exceed 1 (α = 0.05..0.15 at the baseball set: sup κ > 1, a range refused as outside 𝓟)
+        let kappa = one.clone()
+            / (one.clone()
+                + (one.clone() / self.alpha.clone() - one.clone()) * self.a.pow(&self.p));
         let sigma = match kind {
             ModelKind::Shc => self.c.clone() * v0.clone() / (d * self.k.clone()),
             ModelKind::Maxwell => {
