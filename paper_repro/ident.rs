@@ -456,7 +456,7 @@ pub fn render(r: &mut String, id: &Ident) {
             let p = m.base.as_array();
             writeln!(
                 r,
-                "| {} | {} | {} | {:.2} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {:.2} | {} | {} | {} | {} | {:.5} | {} | {} |",
                 c.label,
                 k + 1,
                 f4(m.j),
@@ -465,7 +465,7 @@ pub fn render(r: &mut String, id: &Ident) {
                 f4(p[0]),
                 f4(p[1]),
                 f4(p[2]),
-                format!("{:.5}", p[3]),
+                p[3],
                 f4(p[4]),
                 f4(p[5])
             )
