@@ -19,12 +19,9 @@
 //! paving reports is still proved by the interval engines, and a row the guess gets wrong is
 //! only tried later, on smaller boxes.
 
-use super::form::tc_factor;
 use super::problem::Problem;
-use crate::fit::cost::CostOptions;
-use crate::models::scaling::nd_from_base;
-use crate::models::{Maxwell, ModelKind, NdParams, Shc};
-use crate::observables::impact;
+use crate::fit::cost::{CostOptions, model_point};
+use crate::models::NdParams;
 use inari::Interval;
 
 /// How much wider than the linearized half-width a rigorous enclosure is taken to be (the
@@ -41,16 +38,6 @@ pub enum Guess {
     Inside,
     /// Neither at this box's size (or the f64 engine failed).
     Open,
-}
-
-/// T_s and e of the f64 engine at base set `base`, speed `v0`.
-fn run(kind: ModelKind, base: &NdParams<f64>, v0: f64, opts: &CostOptions) -> Option<(f64, f64)> {
-    let p = nd_from_base(kind, base, &v0).ok()?;
-    let r = match kind {
-        ModelKind::Shc => impact(&Shc::new(p), opts).ok().map(|r| (r.ts, r.e)),
-        ModelKind::Maxwell => impact(&Maxwell::new(p), opts).ok().map(|r| (r.ts, r.e)),
-    }?;
-    Some((r.0?, r.1))
 }
 
 fn params(b: [f64; 6]) -> NdParams<f64> {
@@ -71,11 +58,8 @@ pub fn guess(problem: &Problem, u: &[Interval], row: usize, e: bool, tc: bool) -
     let v0 = r.v0.mid();
     let mid = |x: &[Interval]| -> [f64; 6] { problem.base(x).map(|i| i.mid()) };
     let c = mid(u);
-    let obs = |b: [f64; 6]| -> Option<(f64, f64)> {
-        let (ts, e) = run(problem.kind, &params(b), v0, &opts)?;
-        let p = Interval::try_from((b[5], b[5])).ok()?;
-        Some((e, ts * tc_factor(r.v0, p).0.mid()))
-    };
+    // e and tc of the f64 engine (one integration gives both)
+    let obs = |b: [f64; 6]| model_point(problem.kind, &params(b), v0, &opts).ok();
     let Some(y0) = obs(c) else {
         return Guess::Open;
     };
@@ -126,6 +110,7 @@ mod tests {
     use crate::fit::CorData;
     use crate::fit::cost::model_cor;
     use crate::identify::setup::{Spec, problem};
+    use crate::models::ModelKind;
 
     const DSS: [f64; 6] = [1.43, -1.42, 0.632, 0.00715, 1.31, 1.27];
 
