@@ -659,10 +659,11 @@ pub struct EngineArgs {
     #[arg(long, value_name = "K", allow_hyphen_values = true,
           value_parser = count(ORDER))]
     pub order: Option<usize>,
-    /// With --rigorous and inputs given as ranges (a..b): a range is proved whole (the engine
-    /// carries the solution's dependence on it); one that cannot be is bisected along its
-    /// relatively widest input, into at most N sub-ranges, 1 ≤ N ≤ 1024, whose hull is the
-    /// result [default: 32]. Needs --rigorous.
+    /// With --rigorous and inputs given as ranges (a..b): the ceiling of an adaptive split. A
+    /// range is proved whole (the engine carries the solution's dependence on it) and cut,
+    /// along its relatively widest input, where a piece cannot be proved or makes the hull of
+    /// e or T_s wider than 1.1× what point runs prove they spread; at most N pieces,
+    /// 1 ≤ N ≤ 1024, whose hull is the result [default: 256]. Needs --rigorous.
     #[arg(long, value_name = "N", allow_hyphen_values = true,
           value_parser = count(PIECES))]
     pub pieces: Option<usize>,

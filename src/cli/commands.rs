@@ -13,9 +13,9 @@ use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::precision::{self, FallbackBudget, outward_f64};
 use bwcl::observables::rigorous::rigorous_impact;
-use bwcl::observables::sets;
 use bwcl::observables::trajectory::{Units, trajectory};
 use bwcl::observables::{FloatOptions, impact};
+use bwcl::observables::{sets, split};
 use inari::Interval;
 use rayon::prelude::*;
 
@@ -71,6 +71,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     }
     input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.params.model);
+    let mut range_notes: Vec<String> = Vec::new();
     let (bytes, failed, total, elapsed) = if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
@@ -100,6 +101,23 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         bar.finish();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| !r.proved).count();
+        // how each range was split and how tight its hull is (in the JSON output as "range")
+        if a.format == super::args::Format::Table {
+            range_notes = rows
+                .iter()
+                .filter_map(|r| {
+                    let g = r.range.as_ref()?;
+                    let v0 = r.v0.map_or(String::new(), |[l, h]| {
+                        format!(
+                            " for v0 in [{}, {}]",
+                            output::outward(l, bwcl::observables::decimal::Rounding::Down),
+                            output::outward(h, bwcl::observables::decimal::Rounding::Up)
+                        )
+                    });
+                    Some(format!("bwcl: note{v0}: {}", g.note))
+                })
+                .collect();
+        }
         (
             output::rigorous_cor(&rows, a.format)?,
             failed,
@@ -125,6 +143,9 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     };
     // notes only after the output is written: an error must stay the one stderr line
     let timing = || {
+        for n in &range_notes {
+            note(n);
+        }
         if a.timing {
             let s = elapsed.as_secs_f64();
             note(&format!(
@@ -240,8 +261,29 @@ pub(crate) fn rigorous_row(
     // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
     // set, with the solution's dependence on them carried by the engine
     let ranged = c.inputs.values().iter().any(sets::is_range);
+    let mut range = None;
     let res = if ranged {
-        sets::prove_over_set_split(kind, &c.inputs, opts, pieces).map(|(r, _)| (r.ts, r.e))
+        let split = split::SplitOptions {
+            max_pieces: pieces,
+            ..Default::default()
+        };
+        split::prove_over_set_adaptive(kind, &c.inputs, opts, &split).map(|r| {
+            range = Some(output::RangeOut {
+                pieces: r.pieces,
+                stop: match r.stop {
+                    split::Stop::Tight => "tight",
+                    split::Stop::Pieces => "pieces",
+                    split::Stop::Time => "time",
+                    split::Stop::Unsplittable => "unsplittable",
+                },
+                e_inner: r.e_inner,
+                ts_inner: r.ts_inner,
+                e_ratio: r.e_ratio(),
+                ts_ratio: r.ts_ratio(),
+                note: r.summary(),
+            });
+            (r.ts, r.e)
+        })
     } else {
         with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
             .map(|enc| (enc.ts, enc.e)))
@@ -263,6 +305,7 @@ pub(crate) fn rigorous_row(
         sensitivities: None,
         bits: 53,
         fallback: None,
+        range,
     };
     // not decided at f64: the precision fallback (point cases given as text)
     let res = match (res, &c.text) {

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// Most impact speeds in one --v0 list.
 pub const MAX_SPEEDS: usize = 10_000;
 /// Default --pieces.
-const PIECES: usize = 32;
+const PIECES: usize = 256;
 
 /// The names of the six values of --nd, --base and --init, as parameter errors name them.
 const ND_NAMES: [&str; 6] = ["B", "Γ", "κ", "σ", "n", "p"];

@@ -92,6 +92,54 @@ pub struct RigorousRow {
     /// The runs of the precision fallback, when it ran (JSON only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fallback: Option<Vec<FallbackRun>>,
+    /// Inputs given as ranges: how the range was split and how tight the hull is (JSON; a
+    /// note on stderr otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<RangeOut>,
+}
+
+/// The adaptive split of a range ([`crate::observables::split`]).
+#[derive(Serialize, Clone, Debug)]
+pub struct RangeOut {
+    pub pieces: usize,
+    /// "tight", "pieces", "time" or "unsplittable": why the split stopped.
+    pub stop: &'static str,
+    /// Inner bounds [a, b] of e over the range, proved at points: min e ≤ a and max e ≥ b
+    /// (printed inward: a rounded up, b down); null when unknown.
+    #[serde(serialize_with = "json_inner")]
+    pub e_inner: Option<[f64; 2]>,
+    #[serde(serialize_with = "json_inner")]
+    pub ts_inner: Option<[f64; 2]>,
+    /// Upper bounds of wid(e)/(b − a) and of the same for T_s (null: unknown).
+    #[serde(serialize_with = "json_ratio")]
+    pub e_ratio: f64,
+    #[serde(serialize_with = "json_ratio")]
+    pub ts_ratio: f64,
+    /// The same in words.
+    pub note: String,
+}
+
+/// Inner bounds: [a rounded up, b rounded down] (the claims min ≤ a, max ≥ b stay true).
+fn json_inner<S: Serializer>(b: &Option<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeTuple;
+    let Some([a, b]) = b else {
+        return s.serialize_none();
+    };
+    struct B(f64, Rounding);
+    impl Serialize for B {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            json_bound(self.0, self.1, s)
+        }
+    }
+    let mut t = s.serialize_tuple(2)?;
+    t.serialize_element(&B(*a, Rounding::Up))?;
+    t.serialize_element(&B(*b, Rounding::Down))?;
+    t.end()
+}
+
+/// A ratio bound, rounded up (null when not finite).
+fn json_ratio<S: Serializer>(r: &f64, s: S) -> Result<S::Ok, S::Error> {
+    json_bound(*r, Rounding::Up, s)
 }
 
 /// One run of the precision fallback.

@@ -14,6 +14,7 @@ pub mod precision;
 pub mod rigorous;
 pub mod separation;
 pub mod sets;
+pub mod split;
 pub mod trajectory;
 
 pub use separation::{FloatOptions, Impact, ImpactError, impact};
