@@ -77,7 +77,8 @@ impl<const N: usize, I: Enclosure> Piece<N, I> {
     }
 }
 
-/// The proved flow from T = 0: consecutive pieces.
+/// The proved flow from its first piece's start (T = 0 for a run of the engine; t0 for a
+/// window, [`super::window`]): consecutive pieces.
 #[derive(Clone, Debug)]
 pub struct Flow<const N: usize, I = Interval> {
     pub pieces: Vec<Piece<N, I>>,
@@ -96,10 +97,10 @@ impl<const N: usize, I> Default for Flow<N, I> {
 }
 
 impl<const N: usize, I: Enclosure> Flow<N, I> {
-    /// An enclosure of Φ(t) for 0 ≤ t ≤ [`Flow::t_end`] (`None` outside). At a piece boundary
-    /// both pieces are valid; the intersection of the two is returned.
+    /// An enclosure of Φ(t) for [`Flow::t_start`] ≤ t ≤ [`Flow::t_end`] (`None` outside). At
+    /// a piece boundary both pieces are valid; the intersection of the two is returned.
     pub fn enclose(&self, t: f64) -> Option<[I; N]> {
-        if !(t >= 0.0 && t <= self.t_end()) {
+        if !(t >= self.t_start() && t <= self.t_end()) {
             return None;
         }
         let i = self.pieces.partition_point(|p| p.t1() < t);
@@ -117,6 +118,10 @@ impl<const N: usize, I: Enclosure> Flow<N, I> {
             }
         }
         Some(b)
+    }
+    /// The start of the proved time range (0 when there is no piece).
+    pub fn t_start(&self) -> f64 {
+        self.pieces.first().map_or(0.0, |p| p.t0())
     }
     /// The end of the proved time range.
     pub fn t_end(&self) -> f64 {

@@ -25,6 +25,7 @@ pub mod rec;
 pub mod singular;
 pub mod step;
 pub mod tape;
+pub mod window;
 
 pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
