@@ -404,3 +404,85 @@ fn hunt_crossley_ranges_contain_the_closed_form_within_the_factor() {
         );
     }
 }
+
+/// The adaptive split of a range (`observables::split`, issue #32 item 5) against a closed
+/// form: in the Hunt–Crossley limit (B_b = 10⁻³⁰⁰, Γ_b = 0) e depends on σ = σ_b·v0 alone and
+/// decreases in it, so over v0 ∈ [a, b] the true range of e is [e_HC(σ_b b), e_HC(σ_b a)],
+/// bracketed as exact rationals. The hull must contain it, be within 1.2× its width, and its
+/// inner bounds must hold (min e ≤ a', max e ≥ b'); the printed ratio must bound the true one.
+/// Negative control: one piece (no split) is far wider than 1.2× — so the factor is the split's.
+#[test]
+fn an_adaptive_range_split_is_tight_against_the_hunt_crossley_closed_form() {
+    use bwcl::observables::split::{SplitOptions, Stop, prove_over_set_adaptive};
+    use rug::Rational;
+    let q = |x: f64| Rational::from_f64(x).unwrap();
+    let sigma_b = 0.3;
+    let (a, b) = (0.5, 4.0);
+    let inputs = base(ModelKind::Shc, "1e-300,0,0.5,0.3,1.5,1.5", iv(a, b));
+    let opts = TaylorOptions::default();
+    let r = prove_over_set_adaptive(ModelKind::Shc, &inputs, &opts, &SplitOptions::default())
+        .expect("proved");
+    // exact range of e: e_HC decreasing in σ
+    let (min_lo, min_hi) = common::hunt_crossley_bracket(&(q(sigma_b) * q(b)));
+    let (max_lo, max_hi) = common::hunt_crossley_bracket(&(q(sigma_b) * q(a)));
+    assert!(
+        q(r.e.inf()) <= min_lo && q(r.e.sup()) >= max_hi,
+        "hull {:?}",
+        r.e
+    );
+    let spread = max_lo.clone() - &min_hi;
+    assert!(
+        q(r.e.wid()) <= Rational::from((6, 5)) * &spread,
+        "e {:e} vs exact spread {}",
+        r.e.wid(),
+        spread.to_f64()
+    );
+    let [ia, ib] = r.e_inner.expect("inner bounds");
+    // min e ≤ min_hi ≤ ia and ib ≤ max_lo ≤ max e
+    assert!(min_hi <= q(ia) && q(ib) <= max_lo, "inner [{ia}, {ib}]");
+    // the printed ratio is at least wid/(true spread) ≥ wid/(max_hi − min_lo)
+    let at_least = q(r.e.wid()) / (max_hi.clone() - &min_lo);
+    assert!(
+        q(r.e_ratio()) >= at_least,
+        "ratio {} below the true one",
+        r.e_ratio()
+    );
+    assert_eq!(r.stop, Stop::Tight, "{}", r.summary());
+    // negative control: without the split
+    let one = SplitOptions {
+        max_pieces: 1,
+        ..SplitOptions::default()
+    };
+    let r1 = prove_over_set_adaptive(ModelKind::Shc, &inputs, &opts, &one).expect("proved whole");
+    assert_eq!((r1.pieces, r1.stop), (1, Stop::Pieces));
+    assert!(
+        q(r1.e.wid()) > Rational::from((6, 5)) * &spread,
+        "one piece is already tight: the test would not see the split"
+    );
+}
+
+/// A range that one run cannot prove (SHC DSS, v0 ∈ [3.85, 3.93]: "the enclosure grew too
+/// wide", measured, and the old fixed split of 8 pieces too) is proved by the adaptive split,
+/// its hull containing the point enclosures at 5 speeds and within 1.2× of their spread.
+#[test]
+fn a_range_one_run_cannot_prove_is_split_until_proved_and_tight() {
+    use bwcl::observables::split::{SplitOptions, prove_over_set_adaptive};
+    let inputs = base(ModelKind::Shc, DSS_SHC, iv(3.8515625, 3.92812));
+    let opts = TaylorOptions::default();
+    assert!(
+        prove_over_set(ModelKind::Shc, &inputs, &opts).is_err(),
+        "proved whole"
+    );
+    let r = prove_over_set_adaptive(ModelKind::Shc, &inputs, &opts, &SplitOptions::default())
+        .expect("proved");
+    let pts = samples(ModelKind::Shc, &inputs, 6, 5);
+    for (ts, e) in &pts {
+        assert!(
+            ts.subset(r.ts) && e.subset(r.e),
+            "{ts:?} {e:?} not in {r:?}"
+        );
+    }
+    let se = spread(pts.iter().map(|p| p.1));
+    assert!(r.e.wid() <= 1.2 * se, "e {:e} vs spread {se:e}", r.e.wid());
+    assert!(r.e_ratio() <= 1.2, "{}", r.summary());
+}

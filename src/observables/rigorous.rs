@@ -2,8 +2,7 @@
 
 use crate::engines::taylor::{Flow, RigorError, TaylorOptions, integrate_to_separation};
 use crate::models::CollisionModel;
-use crate::models::scaling::nd_from_base;
-use crate::models::{Maxwell, ModelKind, NdParams, Shc};
+use crate::models::{ModelKind, NdParams};
 use inari::Interval;
 
 /// A proved result: the true T_s lies in `ts` and the true e = V(T_s) in `e`, for every
@@ -42,17 +41,11 @@ pub struct RangeEnclosure {
     pub pieces: usize,
 }
 
-/// A proved (T_s, e) of one sub-range, or why not.
-type Proved = Result<(Interval, Interval), RigorError>;
-
-/// Encloses T_s and e for every v0 in the interval `v0` of base set `base` (𝓟(P*, v0)).
-///
-/// The parameters are constants of the engine (it has no Jacobian with respect to them), so a
-/// wide v0 interval inflates a single enclosure far beyond the true spread of e. The range is
-/// therefore split: starting from the whole range, the sub-range whose e enclosure is widest
-/// (or that could not be proved) is bisected, until `max_pieces` sub-ranges are proved; the
-/// result is the hull over the pieces, valid for every v0 in the range. Fails with the reason
-/// if some sub-range is still not proved when the budget is spent.
+/// Encloses T_s and e for every v0 in the interval `v0` of base set `base` (𝓟(P*, v0)): the
+/// adaptive split of [`super::split`] (pieces cut where unproved or where they overshoot the
+/// hull's ends) with at most `max_pieces` pieces; the hull over the pieces, valid for every v0
+/// in the range. Fails with the reason if some sub-range is still not proved when the budget is
+/// spent.
 pub fn rigorous_impact_over_speeds(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -60,76 +53,25 @@ pub fn rigorous_impact_over_speeds(
     opts: &TaylorOptions,
     max_pieces: usize,
 ) -> Result<RangeEnclosure, RigorError> {
-    let prove = |v: Interval| -> Proved {
-        let p = nd_from_base(kind, base, &v).map_err(|e| RigorError {
-            reason: e.0,
-            t: 0.0,
-            width: 0.0,
-        })?;
-        match kind {
-            ModelKind::Shc => rigorous_impact(&Shc::new(p), opts).map(|r| (r.ts, r.e)),
-            ModelKind::Maxwell => rigorous_impact(&Maxwell::new(p), opts).map(|r| (r.ts, r.e)),
-        }
+    let inputs = super::sets::Inputs::Base {
+        base: base.clone(),
+        v0,
     };
-    // (sub-range, result): the piece to split is the unproved or widest one, and among equals
-    // the widest range
-    let key =
-        |(v, r): &(Interval, Proved)| (r.as_ref().map_or(f64::INFINITY, |(_, e)| e.wid()), v.wid());
-    let mut pieces: Vec<(Interval, Proved)> = vec![(v0, prove(v0))];
-    while pieces.len() < max_pieces.max(1) {
-        let worst = (0..pieces.len())
-            .max_by(|&a, &b| {
-                let (ka, kb) = (key(&pieces[a]), key(&pieces[b]));
-                ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
-            })
-            .unwrap();
-        let (v, _) = pieces.swap_remove(worst);
-        let m = v.mid();
-        if !(v.inf() < m && m < v.sup()) {
-            // a point: nothing left to split
-            let r = prove(v);
-            pieces.push((v, r));
-            break;
-        }
-        let (a, b) = (
-            Interval::try_from((v.inf(), m)).unwrap(),
-            Interval::try_from((m, v.sup())).unwrap(),
-        );
-        // the two halves on two threads (rayon)
-        let (ra, rb) = rayon::join(|| prove(a), || prove(b));
-        pieces.push((a, ra));
-        pieces.push((b, rb));
-    }
-    let mut hull: Option<(Interval, Interval)> = None;
-    for (v, r) in &pieces {
-        let (ts, e) = r.as_ref().map_err(|err| RigorError {
-            reason: format!(
-                "for v0 in [{}, {}] (of {} sub-ranges): {}",
-                v.inf(),
-                v.sup(),
-                pieces.len(),
-                err.reason
-            ),
-            t: err.t,
-            width: err.width,
-        })?;
-        hull = Some(match hull {
-            None => (*ts, *e),
-            Some((h1, h2)) => (h1.convex_hull(*ts), h2.convex_hull(*e)),
-        });
-    }
-    let (ts, e) = hull.expect("at least one piece");
-    Ok(RangeEnclosure {
-        ts,
-        e,
-        pieces: pieces.len(),
+    let split = super::split::SplitOptions {
+        max_pieces,
+        ..Default::default()
+    };
+    super::split::prove_over_set_adaptive(kind, &inputs, opts, &split).map(|r| RangeEnclosure {
+        ts: r.ts,
+        e: r.e,
+        pieces: r.pieces,
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::models::{Maxwell, ModelKind, NdParams, Shc};
+    use crate::models::{ModelKind, NdParams};
     use crate::observables::{FloatOptions, impact};
 
     fn shc(s: &str) -> (Shc<Interval>, Shc<f64>) {
