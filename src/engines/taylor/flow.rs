@@ -39,6 +39,28 @@ pub fn point(x: f64) -> Interval {
     Interval::try_from((x, x)).expect("finite time")
 }
 
+/// Σ_{k<K} c_k s^k + s^K r (Horner), for an interval s: in the jet arithmetic of `I` (for
+/// inari intervals [`crate::arith::interval::ulp::Ulp`], the same enclosures without
+/// rounding-mode switches).
+pub fn taylor_eval<const N: usize, I: Enclosure>(coefs: &[[I; N]], rem: &[I; N], s: &I) -> [I; N] {
+    let k = coefs.len();
+    if s.is_empty() || coefs.iter().any(|c| c.iter().any(|x| x.is_empty())) {
+        return std::array::from_fn(|_| I::empty());
+    }
+    let sk = s.powi_nonneg(k as u32).to_jet();
+    let su = s.to_jet();
+    std::array::from_fn(|i| {
+        let mut p = coefs[k - 1][i].to_jet();
+        for c in coefs.iter().rev().skip(1) {
+            p = p * su.clone() + c[i].to_jet();
+        }
+        if rem[i].is_empty() {
+            return I::empty();
+        }
+        I::from_jet(p + rem[i].to_jet() * sk.clone())
+    })
+}
+
 impl<const N: usize, I: Enclosure> Piece<N, I> {
     /// Ends the piece earlier, at t (t0 ≤ t ≤ t1): its enclosure stays valid on [t0, t].
     pub fn truncate(&mut self, t: f64) {
@@ -68,7 +90,7 @@ impl<const N: usize, I: Enclosure> Piece<N, I> {
                 coefs,
                 remainder,
                 ..
-            } => super::step::taylor_eval(coefs, remainder, &tau(t, *t0)),
+            } => taylor_eval(coefs, remainder, &tau(t, *t0)),
             Piece::LowOrder { t0, x0, slope, .. } => {
                 let s = tau(t, *t0);
                 std::array::from_fn(|i| x0[i].clone() + s.clone() * slope[i].clone())

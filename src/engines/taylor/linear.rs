@@ -37,7 +37,7 @@
 //!   distributed form ≈ ±10⁶. A product by a constant wider than a few ulps keeps its operand
 //!   as a leaf (`thin`); the decimal enclosures of point parameters are 1 ulp wide.
 
-use super::tape::{Op, operands};
+use super::op::{Op, operands};
 use crate::arith::Real;
 
 /// c₀ + Σⱼ cⱼ·x_{nⱼ}: the constant `shift` (index of c₀ among the tape's constants; it enters
@@ -196,7 +196,7 @@ pub(super) fn fuse<R: Real>(
     // are never absorbed)
     let m = |a: usize| map[a].expect("an operand that is computed");
     for op in &mut out {
-        *op = super::tape::remap(*op, m);
+        *op = super::op::remap(*op, m);
     }
     for lin in &mut lins {
         for t in &mut lin.terms {

@@ -16,7 +16,7 @@
 //! them as constants (their value at order 0, zeros above). `pow`, `ln` and `sqrt` are only
 //! recorded on such nodes (the models use them on parameters only).
 
-use super::tape::Op;
+use super::op::Op;
 use crate::arith::Dot;
 use crate::arith::{Real, Scalar};
 use std::ops::{Add, Div, Mul, Neg, Sub};

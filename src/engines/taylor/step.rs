@@ -21,6 +21,7 @@
 //! (Picard–Lindelöf), then Φ(t0 + τ) ∈ X + τ·f(Y) for τ ∈ [0, h] — valid across any
 //! switching surface because f is only evaluated, never expanded.
 
+pub use super::flow::taylor_eval;
 use super::flow::{Piece, tau};
 use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
@@ -114,28 +115,6 @@ fn scaled_width<I: Enclosure>(r: &I, h: f64, k: usize) -> f64 {
 
 fn hull<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N]) -> [I; N] {
     std::array::from_fn(|i| a[i].hull(&b[i]))
-}
-
-/// Σ_{k<K} c_k s^k + s^K r (Horner), for an interval s: in the jet arithmetic of `I` (for
-/// inari intervals [`crate::arith::interval::ulp::Ulp`], the same enclosures without
-/// rounding-mode switches).
-pub fn taylor_eval<const N: usize, I: Enclosure>(coefs: &[[I; N]], rem: &[I; N], s: &I) -> [I; N] {
-    let k = coefs.len();
-    if s.is_empty() || coefs.iter().any(|c| c.iter().any(|x| x.is_empty())) {
-        return std::array::from_fn(|_| I::empty());
-    }
-    let sk = s.powi_nonneg(k as u32).to_jet();
-    let su = s.to_jet();
-    std::array::from_fn(|i| {
-        let mut p = coefs[k - 1][i].to_jet();
-        for c in coefs.iter().rev().skip(1) {
-            p = p * su.clone() + c[i].to_jet();
-        }
-        if rem[i].is_empty() {
-            return I::empty();
-        }
-        I::from_jet(p + rem[i].to_jet() * sk.clone())
-    })
 }
 
 /// A proved step: the piece, the box at its end, and (for a Taylor step) the a-priori box.
