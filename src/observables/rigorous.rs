@@ -71,7 +71,7 @@ pub fn rigorous_impact_over_speeds(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::models::{ModelKind, NdParams};
+    use crate::models::{Maxwell, ModelKind, NdParams, Shc};
     use crate::observables::{FloatOptions, impact};
 
     fn shc(s: &str) -> (Shc<Interval>, Shc<f64>) {

@@ -112,8 +112,9 @@ impl SplitEnclosure {
             Stop::Unsplittable => "a piece could not be proved in halves".to_string(),
         };
         let mut s = format!(
-            "{} pieces ({why}); width of e {} its spread over the range, of T_s {}",
+            "{} piece{} ({why}); width of e {} its spread over the range, of T_s {}",
             self.pieces,
+            if self.pieces == 1 { "" } else { "s" },
             r(self.e_ratio()),
             r(self.ts_ratio())
         );
@@ -160,6 +161,9 @@ struct Piece {
     whole: bool,
     /// Proved or refused under a cap of steps below the options' own.
     capped: bool,
+    /// Refused at that cap; and its parent was too.
+    hit_cap: bool,
+    parent_hit_cap: bool,
 }
 
 /// The cap of steps of a piece: this many times the most a proved piece took …
@@ -249,6 +253,9 @@ fn prove_piece(
             }
         );
     }
+    let cap = format!("more than {} steps", opts.max_steps);
+    let hit_cap =
+        opts.max_steps < full && proof.as_ref().is_err_and(|e| e.reason.starts_with(&cap));
     // the centre: from the run when it proved one (one range), else a point run
     let centre = match &proof {
         Ok(SetEnclosure {
@@ -264,6 +271,8 @@ fn prove_piece(
         centre,
         whole: false,
         capped: opts.max_steps < full,
+        hit_cap,
+        parent_hit_cap: false,
     }
 }
 
@@ -292,21 +301,25 @@ pub fn prove_over_set_adaptive(
 ) -> Result<SplitEnclosure, RigorError> {
     let max_pieces = split.max_pieces.max(1);
     // the set's extreme corners: where a monotone e takes its extremes
-    let mut points: Vec<Point> = [-1, 1]
+    // (their steps: the scale of a piece's cap of steps below)
+    let corners: Vec<SetEnclosure> = [-1, 1]
         .par_iter()
-        .filter_map(|&c| prove_at_point(kind, &at(inputs, c), opts).ok())
+        .filter_map(|&c| prove_over_set(kind, &at(inputs, c), opts).ok())
         .collect();
+    let mut points: Vec<Point> = corners.iter().map(|r| (r.ts, r.e)).collect();
     // a piece that will fail usually fails slowly: its set crosses the switching surfaces in
     // thousands of short steps before it grows too wide (measured, SHC DSS, v0 ∈ [3.85, 3.93]:
     // 11 294 steps and 5.2 s, where its halves take 197 and 173 steps, 0.12 s each). The pieces
     // run with a cap of CAP_FACTOR × the most steps a proved piece took (at least MIN_CAP);
-    // one that hits it is cut like any other, and only a piece that cannot be cut runs again
-    // without the cap.
+    // one that hits it is cut like any other; a piece that hits it as its parent did needs
+    // the steps, not a smaller set (Maxwell, B = 1000, Γ ∈ −999.9999999..−999.999999: every
+    // piece hit a cap of 2000), and runs again without the cap, as does a piece that cannot
+    // be cut. The scale before any piece is proved: the corners' point runs.
     let capped = |most: usize| TaylorOptions {
         max_steps: opts.max_steps.min((CAP_FACTOR * most).max(MIN_CAP)),
         ..opts.clone()
     };
-    let mut most = 0usize;
+    let mut most = corners.iter().map(|r| r.steps).max().unwrap_or(0);
     let mut pieces = vec![prove_piece(
         kind,
         inputs.clone(),
@@ -318,7 +331,7 @@ pub fn prove_over_set_adaptive(
     loop {
         // 1. unproved pieces: cut (all of them at once, in parallel)
         if let Some(i) = pieces.iter().position(|p| p.proof.is_err()) {
-            let e = pieces[i].proof.as_ref().err().expect("an error").clone();
+            let e = pieces[i].proof.as_ref().expect_err("an error").clone();
             if e.out_of_time() {
                 return Err(RigorError {
                     reason: format!(
@@ -332,6 +345,23 @@ pub fn prove_over_set_adaptive(
             }
             if e.no_separation() && pieces.len() == 1 {
                 return Err(e);
+            }
+            // twice at the cap in a row: the same piece again, without it
+            let again: Vec<usize> = (0..pieces.len())
+                .filter(|&i| pieces[i].hit_cap && pieces[i].parent_hit_cap)
+                .collect();
+            if !again.is_empty() {
+                let redone: Vec<(usize, Piece)> = again
+                    .par_iter()
+                    .map(|&i| {
+                        let p = prove_piece(kind, pieces[i].inputs.clone(), opts, opts.max_steps);
+                        (i, p)
+                    })
+                    .collect();
+                for (i, p) in redone {
+                    pieces[i] = p;
+                }
+                continue;
             }
             let failed: Vec<usize> = (0..pieces.len())
                 .filter(|&i| pieces[i].proof.is_err())
@@ -359,7 +389,7 @@ pub fn prove_over_set_adaptive(
                 }
                 let p = &pieces[failed[cut.len().min(failed.len() - 1)]];
                 let ranges = ranges_text(&p.inputs);
-                let e = p.proof.as_ref().err().expect("an error");
+                let e = p.proof.as_ref().expect_err("an error");
                 return Err(RigorError {
                     reason: if ranges.is_empty() {
                         e.reason.clone()
@@ -369,10 +399,15 @@ pub fn prove_over_set_adaptive(
                     ..e.clone()
                 });
             }
+            let hits: Vec<bool> = failed.iter().map(|&i| pieces[i].hit_cap).collect();
             let new: Vec<Piece> = cut
                 .into_par_iter()
-                .flat_map_iter(|h| h.into_iter())
-                .map(|inp| prove_piece(kind, inp, &capped(most), opts.max_steps))
+                .zip(hits)
+                .flat_map_iter(|(h, hit)| h.into_iter().map(move |inp| (inp, hit)))
+                .map(|(inp, hit)| Piece {
+                    parent_hit_cap: hit,
+                    ..prove_piece(kind, inp, &capped(most), opts.max_steps)
+                })
                 .collect();
             pieces.retain(|p| p.proof.is_ok());
             pieces.extend(new);
@@ -483,7 +518,7 @@ pub fn prove_over_set_adaptive(
                 }
             }
         }
-        replace.sort_by(|a, b| b.0.cmp(&a.0));
+        replace.sort_by_key(|r| std::cmp::Reverse(r.0));
         for (i, [a, b]) in replace {
             pieces.swap_remove(i);
             pieces.push(a);

@@ -10,6 +10,7 @@
 use super::event::{self, SeparationEvent};
 use super::flow::{self, Flow, Piece};
 use super::lohner::Parallelepiped;
+use super::options::WIDE_SET;
 use super::options::{
     CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, TaylorOptions, UNDECIDABLE,
 };
@@ -17,12 +18,6 @@ use super::singular;
 use super::step::{self, StepOut};
 use super::tape::{Tape, Workspace};
 use crate::arith::Enclosure;
-
-/// The state width above which a set counts as wide: its parallelepiped is kept through
-/// low-order steps and kink cuts, and more orders take the mean-value form (see the loop).
-/// Point sets (width ≲ 1e-12) keep the box re-wrap there: measured on the 28 Table 1 cases,
-/// keeping the parallelepiped changed their e widths by 0.77–1.25× (no gain on balance).
-const WIDE_SET: f64 = 1e-10;
 
 /// The widest state a start step may end in (else the Taylor steps leave the start), at f64
 /// precision: ≈ 18 ulps of 1; at a precision of machine epsilon ε it scales by ε/2⁻⁵², and

@@ -151,3 +151,9 @@ impl fmt::Display for RigorError {
     }
 }
 impl std::error::Error for RigorError {}
+
+/// The state width above which a set counts as wide: its parallelepiped is kept through
+/// low-order steps and kink cuts, and more orders take the mean-value form (see `integrate` and `window`).
+/// Point sets (width ≲ 1e-12) keep the box re-wrap there: measured on the 28 Table 1 cases,
+/// keeping the parallelepiped changed their e widths by 0.77–1.25× (no gain on balance).
+pub(crate) const WIDE_SET: f64 = 1e-10;

@@ -30,9 +30,10 @@
 
 use super::flow::Flow;
 use super::lohner::Parallelepiped;
+use super::options::WIDE_SET;
 use super::step::{self, KinkCut, TaylorFail};
 use super::tape::Tape;
-use super::{DEADLINE, GREW_TOO_WIDE, RigorError, TaylorOptions, WIDE_SET};
+use super::{DEADLINE, GREW_TOO_WIDE, RigorError, TaylorOptions};
 use crate::arith::Enclosure;
 use crate::models::CollisionModel;
 use inari::Interval;
