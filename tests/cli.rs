@@ -902,3 +902,79 @@ fn a_cor_near_one_at_tiny_speed_is_below_one() {
     let e = rows[0]["e"].as_f64().unwrap();
     assert!(e <= 1.0 && (e - e_hi).abs() < 1e-9, "{e}");
 }
+
+/// `cor --rigorous` over a range (issue #32 item 5): the adaptive split's account in JSON
+/// ("range") is the library's, its inner bounds printed inward (a rounded up, b down: the
+/// claims min e ≤ a, max e ≥ b stay true, compared as rationals) and its ratio rounded up; the
+/// table prints it as a note. The range is one that a single run cannot prove.
+#[test]
+fn a_range_reports_its_split_with_inner_bounds_printed_inward() {
+    use bwcl::observables::decimal::parse_rational;
+    use bwcl::observables::sets::Inputs;
+    use bwcl::observables::split::{SplitOptions, prove_over_set_adaptive};
+    use rug::Rational;
+    let (base, v0) = ("1.43,-1.42,0.632,0.00715,1.31,1.27", "3.8515625..3.92812");
+    let args = [
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        base,
+        "--v0",
+        v0,
+        "--rigorous",
+        "--format",
+        "json",
+    ];
+    let o = common::bwcl(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    // the raw decimals of a pair field, as written
+    let pair = |key: &str| -> [Rational; 2] {
+        let at = text.find(&format!("\"{key}\": [")).expect(key) + key.len() + 5;
+        let end = at + text[at..].find(']').unwrap();
+        let v: Vec<Rational> = text[at..end]
+            .split(',')
+            .map(|s| parse_rational(s.trim()).expect("a decimal"))
+            .collect();
+        [v[0].clone(), v[1].clone()]
+    };
+    let inputs = Inputs::Base {
+        base: bwcl::models::NdParams::parse(ModelKind::Shc, base).unwrap(),
+        v0: <inari::Interval as bwcl::arith::Real>::parse_decimal(v0).unwrap(),
+    };
+    let r = prove_over_set_adaptive(
+        ModelKind::Shc,
+        &inputs,
+        &bwcl::engines::taylor::TaylorOptions::default(),
+        &SplitOptions::default(),
+    )
+    .unwrap();
+    let q = |x: f64| Rational::from_f64(x).unwrap();
+    for (key, inner) in [("e_inner", r.e_inner), ("ts_inner", r.ts_inner)] {
+        let [a, b] = inner.expect("inner bounds");
+        let [pa, pb] = pair(key);
+        assert!(
+            pa >= q(a) && pb <= q(b),
+            "{key}: printed [{pa}, {pb}] not inside [{a}, {b}]"
+        );
+    }
+    let [el, eh] = pair("e");
+    assert!(
+        el <= q(r.e.inf()) && eh >= q(r.e.sup()),
+        "e printed inside the hull"
+    );
+    let row = &rows(&o)[0];
+    let g = &row["range"];
+    assert_eq!(g["pieces"].as_u64(), Some(r.pieces as u64));
+    assert_eq!(g["stop"], "tight");
+    assert!(g["e_ratio"].as_f64().unwrap() >= r.e_ratio() && r.e_ratio() <= 1.2);
+    // the table: the same account as a note on stderr
+    let o = common::bwcl(&args[..8]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let note = stderr(&o);
+    assert!(
+        note.contains("bwcl: note for v0 in [") && note.contains("(tight); width of e ≤"),
+        "{note}"
+    );
+}

@@ -278,7 +278,8 @@ fn a_wide_range_of_speeds_is_proved_by_sub_ranges() {
     let bi = NdParams::<Interval>::parse(kind, base).unwrap();
     let r = rigorous_impact_over_speeds(kind, &bi, iv("4.99..5.01"), &TaylorOptions::default(), 8)
         .unwrap();
-    assert_eq!(r.pieces, 8);
+    // the adaptive split: at most the ceiling, fewer when the hull is tight sooner
+    assert!((1..=8).contains(&r.pieces), "{} pieces", r.pieces);
     float_values_inside(kind, base, &[4.99, 4.995, 5.0, 5.005, 5.01], r.e);
     // the hull is proved for every v0 in the range, so it must contain both ends' values and
     // cannot be narrower than their spread

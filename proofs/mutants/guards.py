@@ -19,6 +19,20 @@ TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
 # (name, file, [(exact text, replacement)], what it removes[, the cargo test arguments that
 # must see it: TESTS when not given])
 GUARDS = [
+    # issue #32: the adaptive split of ranges (observables/split.rs)
+    ("split-inner", "src/observables/split.rs",
+     [("        .map(|p| pick(p).sup())\n        .fold(f64::INFINITY, f64::min);",
+       "        .map(|p| pick(p).inf())\n        .fold(f64::INFINITY, f64::min);")],
+     "the inner bound min e ≤ a from the points' upper ends (their lower ends taken)",
+     ["--test", "sets"]),
+    ("split-overshoot", "src/observables/split.rs",
+     [("            .filter(|&(o, _)| o > 1.0)", "            .filter(|&(o, _)| o > f64::INFINITY)")],
+     "the cuts of the pieces that overshoot the hull's ends (the hull of the first proved pieces)",
+     ["--test", "sets"]),
+    ("split-json-inner", "src/cli/output.rs",
+     [("    t.serialize_element(&B(*a, Rounding::Up))?;", "    t.serialize_element(&B(*a, Rounding::Down))?;")],
+     "the inward rounding of the printed inner bound a (rounded down)",
+     ["--test", "cli", "a_range_reports"]),
     # issue #31: set-membership identification (the paving's claims)
     ("identify-form-slopes", "src/identify/form.rs",
      [("        y += term(gj, uj, cj);", "")],

@@ -520,7 +520,7 @@ def cor_rigorous(
     v0: Any = None,
     horizon: float = 100.0,
     order: int = 16,
-    pieces: int = 32,
+    pieces: int = 256,
     threads: Optional[int] = None,
     raise_on_failure: bool = False,
     fallback_bits: int = 256,
@@ -533,9 +533,10 @@ def cor_rigorous(
 
     Every input may be a number (enclosed as its shortest decimal ``repr``: the enclosure
     holds that decimal and the double itself), a decimal string (enclosed as written:
-    ``"0.632"`` is not a double) or a range ``(lo, hi)`` (proved over the whole range; a
-    range that cannot be proved whole is bisected into at most ``pieces`` sub-ranges, whose
-    hull is the result). In ``v0`` a range is an item: ``v0=[(0.9, 1.1)]``.
+    ``"0.632"`` is not a double) or a range ``(lo, hi)`` (proved over the whole range, split
+    adaptively into at most ``pieces`` sub-ranges where a piece cannot be proved or makes the
+    hull of e or T_s wider than 1.1× the spread proved at points; the hull is the result). In
+    ``v0`` a range is an item: ``v0=[(0.9, 1.1)]``.
 
     A batch reports per case: ``status[i]`` is "proved" or "not proved", with ``reason[i]``
     saying why (the other cases are still computed). With ``raise_on_failure=True`` a case
@@ -546,7 +547,7 @@ def cor_rigorous(
     model, base, nd, physical, v0 : as :func:`cor`.
     horizon : nondimensional time within which separation must be proved.
     order : Taylor order K of the engine, 2 ≤ K ≤ 40.
-    pieces : most sub-ranges of a range input, 1 ≤ N ≤ 1024.
+    pieces : ceiling of the adaptive split of a range input, 1 ≤ N ≤ 1024.
     threads : the size of this call's thread pool.
     fallback_bits : a point case that double precision cannot decide ("grazing or
         undecidable", "grew too wide", "cannot cross") is tried again on MPFR intervals at

@@ -170,6 +170,9 @@ struct Piece {
 const CAP_FACTOR: usize = 10;
 /// … and at least this many.
 const MIN_CAP: usize = 2_000;
+/// Pieces cut per pass when tightening (in parallel): a constant, so that the result does not
+/// depend on the number of threads.
+const BATCH: usize = 4;
 
 /// The ranged inputs replaced by their midpoints (or by an end: `corner` −1 / +1).
 fn at(inputs: &Inputs<Interval>, corner: i8) -> Inputs<Interval> {
@@ -326,7 +329,6 @@ pub fn prove_over_set_adaptive(
         &capped(most),
         opts.max_steps,
     )];
-    let batch = rayon::current_num_threads().max(2);
     let mut timed_out = false;
     loop {
         // 1. unproved pieces: cut (all of them at once, in parallel)
@@ -491,7 +493,7 @@ pub fn prove_over_set_adaptive(
         // halves are proved, so the hull is proved at every stage
         let chosen: Vec<usize> = cands
             .iter()
-            .take(batch.min(room))
+            .take(BATCH.min(room))
             .map(|&(_, i)| i)
             .collect();
         let tried: Vec<(usize, Option<[Piece; 2]>)> = chosen
