@@ -111,8 +111,12 @@ fn expected(set: Set) -> Vec<Expected> {
                             base: b.clone(),
                             v0: v,
                         };
-                        let (r, _) = bwcl::observables::sets::prove_over_set_split(
-                            kind, &inputs, &opts, PIECES,
+                        let split = bwcl::observables::split::SplitOptions {
+                            max_pieces: PIECES,
+                            ..Default::default()
+                        };
+                        let r = bwcl::observables::split::prove_over_set_adaptive(
+                            kind, &inputs, &opts, &split,
                         )
                         .unwrap();
                         (r.ts, r.e)

@@ -174,7 +174,8 @@ const MIN_CAP: usize = 2_000;
 /// depend on the number of threads.
 const BATCH: usize = 4;
 
-/// The ranged inputs replaced by their midpoints (or by an end: `corner` −1 / +1).
+/// The ranged inputs replaced by their midpoints (or by an end: `corner` −1 / +1, one double
+/// inside).
 fn at(inputs: &Inputs<Interval>, corner: i8) -> Inputs<Interval> {
     let v: Vec<Interval> = inputs
         .values()
@@ -183,9 +184,12 @@ fn at(inputs: &Inputs<Interval>, corner: i8) -> Inputs<Interval> {
             if !is_range(&x) {
                 return x;
             }
+            // the corners one double inside the interval: a range written with decimal ends
+            // is enclosed by doubles just outside them (0.1 by 0.09999999999999999), and the
+            // inner bounds are claims about the range as written
             let p = match corner {
-                -1 => x.inf(),
-                1 => x.sup(),
+                -1 => x.inf().next_up(),
+                1 => x.sup().next_down(),
                 _ => x.mid(),
             };
             Interval::try_from((p, p)).unwrap_or(x)

@@ -199,6 +199,8 @@ impl<const N: usize, I: Enclosure> Window<N, I> {
             })?;
             let surface_binds = 0.9 * h_surf < to_end;
             let mut hm = if surface_binds { 0.9 * h_surf } else { to_end };
+            // the end binds: tried at full length (step::Workspaces::end_binds)
+            ws.end_binds = !surface_binds;
             let h_min = if surface_binds {
                 opts.min_taylor_step
             } else {
