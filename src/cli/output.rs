@@ -121,20 +121,10 @@ pub struct RangeOut {
 
 /// Inner bounds: [a rounded up, b rounded down] (the claims min ≤ a, max ≥ b stay true).
 fn json_inner<S: Serializer>(b: &Option<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
-    use serde::ser::SerializeTuple;
-    let Some([a, b]) = b else {
-        return s.serialize_none();
-    };
-    struct B(f64, Rounding);
-    impl Serialize for B {
-        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            json_bound(self.0, self.1, s)
-        }
+    match b {
+        Some(p) => json_directed_pair(*p, [Rounding::Up, Rounding::Down], s),
+        None => s.serialize_none(),
     }
-    let mut t = s.serialize_tuple(2)?;
-    t.serialize_element(&B(*a, Rounding::Up))?;
-    t.serialize_element(&B(*b, Rounding::Down))?;
-    t.end()
 }
 
 /// A ratio bound, rounded up (null when not finite).
@@ -198,18 +188,27 @@ struct JsonPair([f64; 2]);
 
 impl Serialize for JsonPair {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::SerializeTuple;
-        struct B(f64, Rounding);
-        impl Serialize for B {
-            fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-                json_bound(self.0, self.1, s)
-            }
-        }
-        let mut t = s.serialize_tuple(2)?;
-        t.serialize_element(&B(self.0[0], Rounding::Down))?;
-        t.serialize_element(&B(self.0[1], Rounding::Up))?;
-        t.end()
+        json_directed_pair(self.0, [Rounding::Down, Rounding::Up], s)
     }
+}
+
+/// Two bounds as a JSON array of two numbers, each rounded in its own direction.
+fn json_directed_pair<S: Serializer>(
+    p: [f64; 2],
+    dirs: [Rounding; 2],
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeTuple;
+    struct B(f64, Rounding);
+    impl Serialize for B {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            json_bound(self.0, self.1, s)
+        }
+    }
+    let mut t = s.serialize_tuple(2)?;
+    t.serialize_element(&B(p[0], dirs[0]))?;
+    t.serialize_element(&B(p[1], dirs[1]))?;
+    t.end()
 }
 
 fn json_pair<S: Serializer>(b: &Option<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
