@@ -7,6 +7,7 @@
 //! cargo run --release --bin paper-repro -- --rigorous    # + proved bands, 30-digit table
 //! cargo run --release --bin paper-repro -- --identifiability  # + minima, profiles, proved feasible sets
 //! cargo run --release --bin paper-repro -- synth         # rewrite paper_repro/data/synthetic_dss.csv
+//! cargo run --release --bin paper-repro -- laws          # redo only the damping formulas' section
 //! ```
 
 mod cor;
@@ -14,6 +15,7 @@ mod demo;
 mod digits;
 mod font;
 mod ident;
+mod laws;
 mod loops;
 mod plot;
 mod report;
@@ -82,6 +84,9 @@ pub struct Args {
 
 #[derive(Subcommand, Debug)]
 pub enum Cmd {
+    /// Redo only the section on the Hunt–Crossley damping formulas (issue #33) of an existing
+    /// report, and its CSV and plot (seconds).
+    Laws,
     /// Write synthetic CoR data: a base set's e at evenly spaced speeds plus seeded Gaussian
     /// noise (the defaults make paper_repro/data/synthetic_dss.csv).
     Synth {
@@ -186,6 +191,20 @@ fn run(args: Args) -> Result<(), String> {
     std::fs::create_dir_all(&out).map_err(|e| format!("creating '{}': {e}", out.display()))?;
     let font = font::init_font()?;
     let t_all = std::time::Instant::now();
+    if let Some(Cmd::Laws) = &args.command {
+        eprintln!("the Hunt–Crossley damping formulas, proved…");
+        let l = laws::run()?;
+        let files = laws::write(&out, &l)?;
+        laws::replace_section(&report_path, &l)?;
+        eprintln!(
+            "wrote {} files into {} and the section of {} ({:.1} s)",
+            files.len(),
+            out.display(),
+            report_path.display(),
+            l.seconds
+        );
+        return Ok(());
+    }
 
     // Fig. 3
     let float_points = if args.quick { 12 } else { 120 };
@@ -312,6 +331,11 @@ fn run(args: Args) -> Result<(), String> {
         None
     };
 
+    // the classical damping formulas (issue #33)
+    eprintln!("the Hunt–Crossley damping formulas, proved…");
+    let laws = laws::run()?;
+    files.extend(laws::write(&out, &laws)?);
+
     let ctx = report::Context {
         args: &args,
         font,
@@ -325,6 +349,7 @@ fn run(args: Args) -> Result<(), String> {
         v0: &v0,
         demo: &d,
         ident: ident.as_ref(),
+        laws: &laws,
         data_path: &data_path,
         fit_opts: &opts,
         files: &files,

@@ -302,6 +302,7 @@ pub struct Context<'a> {
     pub v0: &'a [f64],
     pub demo: &'a Demo,
     pub ident: Option<&'a crate::ident::Ident>,
+    pub laws: &'a crate::laws::Laws,
     pub data_path: &'a Path,
     pub fit_opts: &'a FitOptions,
     pub files: &'a [String],
@@ -809,6 +810,7 @@ pub fn render(c: &Context) -> String {
         )
         .unwrap(),
     }
+    crate::laws::render(&mut r, c.laws);
     writeln!(r, "## What cannot be reproduced, and why\n").unwrap();
     writeln!(
         r,

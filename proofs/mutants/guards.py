@@ -19,6 +19,31 @@ TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
 # (name, file, [(exact text, replacement)], what it removes[, the cargo test arguments that
 # must see it: TESTS when not given])
 GUARDS = [
+    # issue #33: the Hunt–Crossley CoR proved from its closed form (observables/restitution.rs)
+    ("laws-sign", "src/observables/restitution.rs",
+     [("    } else if h.lo() > 0.0 {\n        1", "    } else if h.hi() > 0.0 {\n        1")],
+     "the proved sign H > 0 (an H straddling 0 taken as positive)",
+     ["--test", "laws"]),
+    ("laws-monotone-ends", "src/observables/restitution.rs",
+     [("    let (lo, _) = cor_at(sigma.sup(), tight)?;", "    let (lo, _) = cor_at(sigma.inf(), tight)?;")],
+     "e over [σ] from the bracket at sup σ (e decreasing): the lower end taken at inf σ",
+     ["--lib", "restitution"]),
+    ("laws-exact-ends", "src/observables/restitution.rs",
+     [("    let (lo, _) = exact_sigma_at(e.sup(), tight)?;", "    let (lo, _) = exact_sigma_at(e.inf(), tight)?;")],
+     "σ* over [e] from the bracket at sup e (σ* decreasing): the lower end taken at inf e",
+     ["--lib", "restitution"]),
+    ("laws-within", "src/observables/restitution.rs",
+     [("    } else if x.hi() <= t.lo() && x.lo() >= -t.lo() {", "    } else if x.hi() <= t.lo() {")],
+     "the lower half of |e − e*| ≤ tol in a piece's verdict",
+     ["--test", "laws", "paving"]),
+    ("laws-outside", "src/observables/restitution.rs",
+     [("    } else if x.lo() > t.hi() || x.hi() < -t.hi() {", "    } else if x.lo() > t.hi() || x.hi() < t.hi() {")],
+     "|e − e*| > tol on a whole piece (an error below +tol taken as outside)",
+     ["--test", "laws", "paving"]),
+    ("laws-range-outward", "src/observables/restitution.rs",
+     [("outward(hi, Rounding::Up)?", "outward(hi, Rounding::Down)?")],
+     "the paving's upper end rounded up to a double (the decimal range covered whole)",
+     ["--test", "laws", "cover"]),
     # issue #32: the adaptive split of ranges (observables/split.rs)
     ("split-inner", "src/observables/split.rs",
      [("        .map(|p| pick(p).sup())\n        .fold(f64::INFINITY, f64::min);",

@@ -16,7 +16,9 @@ R, Y, Z, W). For a collision starting at X = Z = 0, V = −1 the package compute
 - :func:`trajectory`, :func:`loop` — the trajectory up to T_s and the hysteresis loop
   (F_P against X, eq:BWHCL), nondimensional or in SI units;
 - :func:`cost`, :func:`fit` — the cost J (eq:J) of a base set P* on measured CoR data and
-  its minimization over 𝓟 (seeded multi-start Nelder–Mead).
+  its minimization over 𝓟 (seeded multi-start Nelder–Mead);
+- :func:`laws` — the published Hunt–Crossley damping formulas χ(e*) against the CoR the law
+  really produces, proved.
 
 Parameters come as in the CLI (``bwcl --help``): exactly one of
 
@@ -59,6 +61,9 @@ __all__ = [
     "fit",
     "identify",
     "identify_dask",
+    "laws",
+    "LawsResult",
+    "FormulaErrors",
     "IdentifyResult",
     "profile",
     "CorResult",
@@ -955,3 +960,4 @@ def profile(
 
 
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402
+from .laws import FORMULAS, FormulaErrors, LawsResult, laws  # noqa: E402

@@ -6,6 +6,14 @@ from typing import Any, Callable, Dict, Mapping, NamedTuple, Optional, Sequence,
 import numpy as np
 import numpy.typing as npt
 
+from .identify import IdentifyResult as IdentifyResult
+from .identify import identify as identify
+from .identify import identify_dask as identify_dask
+from .laws import FORMULAS as FORMULAS
+from .laws import FormulaErrors as FormulaErrors
+from .laws import LawsResult as LawsResult
+from .laws import laws as laws
+
 __version__: str
 TABLE1: Dict[str, Tuple[str, str]]
 

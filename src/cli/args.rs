@@ -347,6 +347,48 @@ pub enum Command {
         after_long_help = identify_examples!()
     )]
     Identify(IdentifyArgs),
+    /// The classical Hunt–Crossley damping formulas χ(e*) against the CoR the law really
+    /// produces, proved.
+    #[command(
+        long_about = "The Hunt–Crossley law F = k|δ|^(n−1)δ + χ|δ|^n δ̇ is usually tuned for a \
+                      target CoR e* by a published formula χ = k·σ(e*)/v0, each derived from an \
+                      approximate energy balance. Its real CoR e solves \
+                      G(σe) = G(−σ), G(u) = −u − ln(1 − u), whatever n (the exact relation of \
+                      Carvalho & Martins 2019): this command proves e(σ(e*)) and the error \
+                      e − e* at --points targets over --e-star (128-bit interval arithmetic), \
+                      and proves over the whole range where |e − e*| ≤ --tol holds, where it \
+                      fails, and what stays undecided at pieces 1e-8 wide. Formulas: \
+                      hunt-crossley 3(1−e)/2, herbert-mcwhannell 6(1−e)/((2e−1)²+3), lee-wang \
+                      3(1−e)/4, lankarani-nikravesh 3(1−e²)/4, gonthier (1−e²)/e, zhiying-qishao \
+                      3(1−e²)exp(2(1−e))/4, flores 8(1−e)/(5e), gharib-hurmuzlu 1/e−1, hu-guo \
+                      3(1−e)/(2e), carvalho-martins (the exact σ).",
+        after_long_help = "Examples:\n  bwcl laws\n  bwcl laws --formulas \
+                           lankarani-nikravesh,flores --e-star 0.5..0.99 --points 50 --format csv"
+    )]
+    Laws(LawsArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct LawsArgs {
+    /// Comma-separated formula names, or all.
+    #[arg(long, default_value = "all", value_name = "NAMES")]
+    pub formulas: String,
+    /// The range of target CoRs a..b, 0 < a < b < 1.
+    #[arg(long = "e-star", default_value = "0.05..0.99", value_name = "A..B")]
+    pub e_star: String,
+    /// Targets on the grid (2 to 10000): the ends and points rounded to 4 decimals between.
+    #[arg(long, default_value_t = 100)]
+    pub points: usize,
+    /// The error bound whose validity is proved over the range, in (0, 1).
+    #[arg(long, default_value = "1e-3")]
+    pub tol: String,
+    /// Output format: the summary per formula (table), or every grid point (csv, json; json
+    /// also has the proved runs).
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Write to this file (replaced whole) instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
 }
 
 /// Output of `identify`.

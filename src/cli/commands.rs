@@ -46,6 +46,7 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
         Command::Cost(a) => super::fit::cost(&a),
         Command::Identify(a) => super::identify::identify(&a),
         Command::Profile(a) => super::profile::profile(&a),
+        Command::Laws(a) => super::laws::laws(&a),
         Command::Prove(p) => match p.what {
             super::args::ProveCommand::Monotone(m) => super::band::monotone(&m),
         },

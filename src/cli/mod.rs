@@ -9,6 +9,7 @@ pub(crate) mod commands;
 pub(crate) mod fit;
 pub(crate) mod identify;
 pub(crate) mod input;
+pub(crate) mod laws;
 pub(crate) mod output;
 pub(crate) mod precise;
 pub(crate) mod profile;
@@ -97,8 +98,8 @@ fn clap_error(e: clap::Error) -> i32 {
     match e.kind() {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             report(
-                "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, identify or \
-                 prove (see --help)",
+                "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, identify, \
+                 laws or prove (see --help)",
             );
             EXIT_BAD_INPUT
         }

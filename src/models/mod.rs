@@ -8,6 +8,7 @@
 //! - [`scaling`]: nondimensionalization both ways and the base-parameter map 𝓟(P*, v0).
 
 pub mod bwhcl;
+pub mod hunt_crossley;
 pub mod maxwell;
 pub mod params;
 pub mod scaling;

@@ -11,6 +11,7 @@
 pub mod band;
 pub mod decimal;
 pub mod precision;
+pub mod restitution;
 pub mod rigorous;
 pub mod separation;
 pub mod sets;

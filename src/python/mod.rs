@@ -13,6 +13,7 @@
 //! - [`trajectory`]: the sampled trajectory and hysteresis loop, float or proved;
 //! - [`fit`]: the cost J (eq:J) and the multi-start Nelder–Mead fit, with a progress callback;
 //! - [`identify`]: proved feasible sets of P* (set-membership identification);
+//! - [`laws`]: the Hunt–Crossley damping formulas' errors, proved;
 //! - [`run`]: argument parsing, errors, the thread pool and the GIL.
 
 // The CLI's sources, compiled into the library for the bindings (the program's entry point
@@ -26,6 +27,7 @@ mod cor;
 mod digits;
 mod fit;
 mod identify;
+mod laws;
 mod rigorous;
 mod run;
 mod trajectory;
@@ -42,6 +44,7 @@ fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit::cost, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(fit::profile, m)?)?;
+    m.add_function(wrap_pyfunction!(laws::laws, m)?)?;
     m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;

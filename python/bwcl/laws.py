@@ -1,0 +1,126 @@
+"""``bwcl.laws``: the published Hunt–Crossley damping formulas against the CoR the law really
+produces, proved (``bwcl laws``, issue #33).
+
+The Simon–Hunt–Crossley law F = k|δ|^(n−1)δ + χ|δ|^n δ̇ is tuned for a target CoR e* by a
+formula σ = χ v0 / k = σ(e*). Its CoR e solves G(σe) = G(−σ), G(u) = −u − ln(1 − u), whatever
+n; each e(σ(e*)) and each error e − e* is proved in 128-bit interval arithmetic, and over the
+whole range of targets the runs where |e − e*| ≤ tol are proved by a paving.
+"""
+
+from __future__ import annotations
+
+import json
+import numbers
+from dataclasses import dataclass
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _bwcl
+
+#: The formulas' names (``bwcl laws --formulas``), in order of publication.
+FORMULAS = (
+    "hunt-crossley",
+    "herbert-mcwhannell",
+    "lee-wang",
+    "lankarani-nikravesh",
+    "gonthier",
+    "zhiying-qishao",
+    "flores",
+    "gharib-hurmuzlu",
+    "hu-guo",
+    "carvalho-martins",
+)
+
+
+@dataclass
+class FormulaErrors:
+    """One formula: at each target ``e_star`` the bounds of σ(e*), of the CoR e the law
+    produces and of the error e − e* (floats, lower bounds rounded down and upper bounds up), and
+    the proved runs of targets: ``(lo, hi, verdict)`` with verdict "within" (|e − e*| ≤ tol for
+    every target of the run), "outside" (> tol for every target) or "undecided"."""
+
+    key: str
+    source: str
+    sigma_formula: str
+    e_star: np.ndarray
+    sigma_lo: np.ndarray
+    sigma_hi: np.ndarray
+    e_lo: np.ndarray
+    e_hi: np.ndarray
+    error_lo: np.ndarray
+    error_hi: np.ndarray
+    max_abs_error: float
+    runs: List[Tuple[float, float, str]]
+
+    def within(self) -> List[Tuple[float, float]]:
+        """The runs of targets where |e − e*| ≤ tol is proved."""
+        return [(a, b) for a, b, v in self.runs if v == "within"]
+
+
+@dataclass
+class LawsResult:
+    tol: float
+    formulas: Dict[str, FormulaErrors]
+    seconds: float
+
+    def __repr__(self) -> str:
+        return (f"LawsResult({len(self.formulas)} formulas × "
+                f"{len(next(iter(self.formulas.values())).e_star) if self.formulas else 0} "
+                f"targets, tol={self.tol}, {self.seconds:.2f} s)")
+
+
+def _pairs(points: Sequence[dict], key: str) -> Tuple[np.ndarray, np.ndarray]:
+    lo = np.array([float(p[key][0]) for p in points])
+    hi = np.array([float(p[key][1]) for p in points])
+    return lo, hi
+
+
+def laws(
+    formulas: Union[str, Sequence[str]] = "all",
+    e_star: Tuple[Any, Any] = ("0.05", "0.99"),
+    *,
+    points: int = 100,
+    tol: Any = "1e-3",
+    threads: Optional[int] = None,
+) -> LawsResult:
+    """The damping formulas' errors, proved, as ``bwcl laws``: ``formulas`` ("all" or names from
+    :data:`FORMULAS`), ``e_star`` the range (lo, hi) of targets with 0 < lo < hi < 1 (decimals,
+    read as written), ``points`` targets on the grid, ``tol`` the error bound whose validity is
+    proved over the range. Bad input raises ValueError with the program's one line."""
+    if isinstance(formulas, str):
+        names = formulas
+    else:
+        if any(not isinstance(f, str) for f in formulas):
+            raise TypeError("formulas must be names (str)")
+        names = ",".join(formulas)
+    if isinstance(points, bool) or not isinstance(points, numbers.Integral):
+        raise TypeError(f"points = {points!r:.40} must be a whole number")
+    try:
+        lo, hi = e_star
+    except (TypeError, ValueError):
+        raise TypeError("e_star must be a pair (lo, hi)") from None
+    for x in (lo, hi, tol):
+        if isinstance(x, (bool, bytes)) or not isinstance(x, (str, numbers.Real)):
+            raise TypeError(f"{x!r:.40} is not a number")
+    text = lambda x: x if isinstance(x, str) else repr(float(x))  # noqa: E731
+    argv = ["laws", f"--formulas={names}", f"--e-star={text(lo)}..{text(hi)}",
+            f"--points={int(points)}", f"--tol={text(tol)}", "--format=json"]
+    d = json.loads(_bwcl.laws(argv, threads=threads))
+    out = {}
+    for f in d["formulas"]:
+        pts = f["points"]
+        s_lo, s_hi = _pairs(pts, "sigma")
+        e_lo, e_hi = _pairs(pts, "e")
+        d_lo, d_hi = _pairs(pts, "error")
+        out[f["key"]] = FormulaErrors(
+            key=f["key"],
+            source=f["source"],
+            sigma_formula=f["sigma"],
+            e_star=np.array([float(p["e_star"]) for p in pts]),
+            sigma_lo=s_lo, sigma_hi=s_hi, e_lo=e_lo, e_hi=e_hi,
+            error_lo=d_lo, error_hi=d_hi,
+            max_abs_error=float(f["max_abs_error"]),
+            runs=[(float(s["lo"]), float(s["hi"]), s["verdict"]) for s in f["segments"]],
+        )
+    return LawsResult(tol=float(d["tol"]), formulas=out, seconds=float(d["seconds"]))
