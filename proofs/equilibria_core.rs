@@ -12,7 +12,7 @@
 #![allow(dead_code)]
 
 use bwcl::arith::Real;
-use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::models::{BoucWenModel, Maxwell, ModelKind, NdParams, Shc};
 use inari::Interval;
 
 #[derive(Debug, Default, Clone)]
@@ -30,7 +30,7 @@ fn iv(a: f64, b: f64) -> Interval {
 }
 
 /// Branch and bound for one model: `split` lists the state components that are split.
-pub fn prove_model<M: CollisionModel<Interval, N>, const N: usize>(
+pub fn prove_model<M: BoucWenModel<Interval, N>, const N: usize>(
     m: &M,
     split: &[usize],
     half: f64,

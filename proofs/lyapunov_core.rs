@@ -10,7 +10,7 @@
 #![allow(dead_code)]
 
 use crate::sym::{PSym, Poly, Verdict, orthants, verdict};
-use bwcl::models::{CollisionModel, Maxwell, NdParams, Shc};
+use bwcl::models::{BoucWenModel, Maxwell, NdParams, Shc};
 use inari::Interval;
 
 /// A parameter box: [lo, hi] of B, g, κ, σ, n, p.

@@ -19,7 +19,7 @@
 use bwcl::arith::jet::dual::Dual;
 use bwcl::engines::dop853::{Dop853, Dop853Error, Options};
 use bwcl::engines::taylor::TaylorOptions;
-use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::models::{BoucWenModel, CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
 use proptest::prelude::*;
@@ -210,7 +210,7 @@ fn state<const N: usize>(max: f64) -> impl Strategy<Value = [f64; N]> {
 
 /// ⟨∇𝒱, f⟩ with ∇𝒱 by forward-mode AD of the implementation's `lyapunov`, and Σ|∂ᵢ𝒱 fᵢ| (the
 /// scale of the rounding error of the sum).
-fn ad_rate<M: CollisionModel<f64, N>, const N: usize>(m: &M, x: &[f64; N]) -> (f64, f64) {
+fn ad_rate<M: BoucWenModel<f64, N>, const N: usize>(m: &M, x: &[f64; N]) -> (f64, f64) {
     let v = m.lyapunov(&Dual::<f64, N>::seed(x));
     let f = m.field(x);
     let mut s = 0.0;
@@ -224,7 +224,7 @@ fn ad_rate<M: CollisionModel<f64, N>, const N: usize>(m: &M, x: &[f64; N]) -> (f
 
 /// The check of thm:*_dV_leq_0 at one state: the closed form equals ⟨∇𝒱, f⟩ (relative 1e-9 of
 /// the scale of the terms), and both are ≤ 0.
-fn check_rate<M: CollisionModel<f64, N>, const N: usize>(
+fn check_rate<M: BoucWenModel<f64, N>, const N: usize>(
     m: &M,
     x: &[f64; N],
 ) -> Result<(f64, f64), String> {
@@ -250,7 +250,7 @@ fn check_rate<M: CollisionModel<f64, N>, const N: usize>(
 
 /// Integrates ẋ = f(x) with DOP853 (rtol, atol = 1e-14 rtol… see below) to `t_end`, calling
 /// `visit(t, x)` at t = 0 and every accepted step.
-fn integrate<M: CollisionModel<f64, N>, const N: usize>(
+fn integrate<M: BoucWenModel<f64, N>, const N: usize>(
     m: &M,
     x0: [f64; N],
     t_end: f64,
@@ -314,7 +314,7 @@ proptest! {
 
 /// Largest relative increase of 𝒱 along a DOP853 (rtol 1e-12) trajectory over [0, t_end]:
 /// max_t (𝒱(x(t)) − 𝒱(x0)) / max(𝒱(x0), 1e-300). Also returns the step count.
-fn max_lyapunov_increase<M: CollisionModel<f64, N>, const N: usize>(
+fn max_lyapunov_increase<M: BoucWenModel<f64, N>, const N: usize>(
     m: &M,
     x0: [f64; N],
     t_end: f64,
@@ -423,7 +423,7 @@ fn to_interval(p: &NdParams<f64>) -> NdParams<Interval> {
 /// sup 𝒱(flow.enclose(t)) − sup 𝒱(x0) at 64 sampled times and every piece boundary of the
 /// proved flow (interval evaluation of `lyapunov` on the proved boxes); `None` if the rigorous
 /// engine gives up on this set (reported, not failed: the engine's limits are not the lemma's).
-fn rigorous_excess<M: CollisionModel<Interval, N>, const N: usize>(m: &M) -> Option<(f64, f64)> {
+fn rigorous_excess<M: BoucWenModel<Interval, N>, const N: usize>(m: &M) -> Option<(f64, f64)> {
     let enc = rigorous_impact(m, &TaylorOptions::default()).ok()?;
     let v0 = m.lyapunov(&m.initial_state()).sup();
     let flow = &enc.flow;
@@ -642,7 +642,7 @@ const CONV_EPS: f64 = 1e-1;
 /// Integrates to the first checkpoint T (CONV_T, 2·CONV_T, …) at which the distance to 𝓔 is
 /// ≤ CONV_EPS·(1 + d0). Ok((T, 𝒱(x(T)), 𝒱(x0))); Err with the distances at every checkpoint
 /// if none up to CONV_T_MAX qualifies.
-fn convergence<M: CollisionModel<f64, N>, const N: usize>(
+fn convergence<M: BoucWenModel<f64, N>, const N: usize>(
     m: &M,
     x0: [f64; N],
 ) -> Result<(f64, f64, f64), String> {
@@ -712,7 +712,7 @@ proptest! {
 
 /// Searches a grid of states in [−2, 2]^N for one where `check_rate` fails with 𝒱̇ > 0; returns
 /// the number of such states and the first one's message.
-fn search_positive_rate<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> (usize, String) {
+fn search_positive_rate<M: BoucWenModel<f64, N>, const N: usize>(m: &M) -> (usize, String) {
     let grid = [-2.0, -1.0, -0.5, -0.1, 0.0, 0.1, 0.5, 1.0, 2.0];
     let mut found = 0;
     let mut first = String::new();

@@ -25,7 +25,7 @@ use bwcl::engines::taylor::TaylorOptions;
 use bwcl::engines::taylor::window::Window;
 use bwcl::models::params::TABLE1;
 use bwcl::models::scaling::nd_from_base;
-use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::models::{BoucWenModel, CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use bwcl::observables::FloatOptions;
 use bwcl::observables::trajectory::{Units, trajectory};
 use inari::Interval;
@@ -138,7 +138,7 @@ fn cpu_seconds() -> f64 {
     ns as f64 * 1e-9
 }
 
-fn run<M: CollisionModel<Interval, N>, const N: usize>(
+fn run<M: BoucWenModel<Interval, N>, const N: usize>(
     m: &M,
     xs: &[f64],
     t0: f64,

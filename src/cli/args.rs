@@ -366,6 +366,57 @@ pub enum Command {
                            lankarani-nikravesh,flores --e-star 0.5..0.99 --points 50 --format csv"
     )]
     Laws(LawsArgs),
+    /// T_s and e of a classical collision law (Hooke, Hertz, Hunt–Crossley, linear
+    /// Kelvin–Voigt), nondimensional, float or proved.
+    #[command(
+        long_about = "T_s and e of a classical collision law on the same engines as the Bouc–Wen \
+                      models, in the nondimensional form (δ = L·X, t = T·√(m/k)-type scaling, \
+                      X(0) = 0, V(0) = −1): hooke X″ = −X; hertz X″ = −|X|^(n−1)X \
+                      [--n, default 1.5]; hunt-crossley X″ = −|X|^(n−1)X − σ|X|^n X′ \
+                      (σ = χv0/k; --sigma, --n); kelvin-voigt X″ = −X − 2ζX′ (ζ = c/(2√(mk)); \
+                      --zeta). Separation: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0}, e = V(T_s) (for \
+                      Hunt–Crossley the return to X = 0, for Kelvin–Voigt where the force \
+                      vanishes). With --rigorous the parameters are enclosed as written.",
+        after_long_help = "Examples:\n  bwcl classical --law hertz --n 1.5 --rigorous\n  \
+                           bwcl classical --law hunt-crossley --sigma 0.75 --n 1.5 --rigorous\n  \
+                           bwcl classical --law kelvin-voigt --zeta 0.3 --format json"
+    )]
+    Classical(ClassicalArgs),
+}
+
+/// A classical collision law.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LawArg {
+    /// The linear spring: X″ = −X.
+    Hooke,
+    /// Hertz's law: X″ = −|X|^(n−1)X.
+    Hertz,
+    /// Simon–Hunt–Crossley: X″ = −|X|^(n−1)X − σ|X|^n X′.
+    HuntCrossley,
+    /// Linear Kelvin–Voigt: X″ = −X − 2ζX′.
+    KelvinVoigt,
+}
+
+#[derive(Args, Debug)]
+pub struct ClassicalArgs {
+    /// The law.
+    #[arg(long, value_enum)]
+    pub law: LawArg,
+    /// The exponent n ≥ 1 (hertz, hunt-crossley) [default: 1.5].
+    #[arg(long, allow_hyphen_values = true)]
+    pub n: Option<String>,
+    /// The damping σ = χv0/k ≥ 0 (hunt-crossley).
+    #[arg(long, allow_hyphen_values = true)]
+    pub sigma: Option<String>,
+    /// The damping ratio ζ = c/(2√(mk)) ≥ 0 (kelvin-voigt).
+    #[arg(long, allow_hyphen_values = true)]
+    pub zeta: Option<String>,
+    /// Prove enclosures of T_s and e with the interval Taylor engine.
+    #[arg(long)]
+    pub rigorous: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
 }
 
 #[derive(Args, Debug)]

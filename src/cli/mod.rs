@@ -5,6 +5,7 @@
 // library and reuse its parsers, checks and rows
 pub(crate) mod args;
 mod band;
+mod classical;
 pub(crate) mod commands;
 pub(crate) mod fit;
 pub(crate) mod identify;
@@ -99,7 +100,7 @@ fn clap_error(e: clap::Error) -> i32 {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             report(
                 "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, identify, \
-                 laws or prove (see --help)",
+                 laws, classical or prove (see --help)",
             );
             EXIT_BAD_INPUT
         }

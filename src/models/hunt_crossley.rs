@@ -32,9 +32,97 @@
 //! al. 2018, *Mech. Mach. Theory*); the CoR the law really produces is e(σ(e*)), proved in
 //! [`crate::observables::restitution`].
 
-use crate::arith::Real;
+use super::CollisionModel;
 use crate::arith::mpfr::Mpi;
+use crate::arith::{Exponent, Real, Scalar};
 use inari::Interval;
+
+/// The law as a collision model, states (X, V):
+///
+/// ```text
+/// X′ = V,   V′ = F = −|X|^(n−1)X − σ|X|^n V,   X(0) = 0, V(0) = −1
+/// ```
+///
+/// Hertz's law is σ = 0, Hooke's (the linear spring) n = 1 and σ = 0. Admissible: n ≥ 1,
+/// σ ≥ 0. Separation by the crate's rule T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0}: while X < 0,
+/// F = |X|^n (1 − σV) > 0 (σV < 1 on the contact, above), so T_s is the return to X = 0, where
+/// δ = 0 and F = 0 at once — Hunt & Crossley's own separation.
+#[derive(Clone, Debug)]
+pub struct HuntCrossley<R: Real> {
+    pub sigma: R,
+    pub n: Exponent<R>,
+    /// σ ≠ 0: an undamped law (Hertz, Hooke) has no damping term, so that Hooke's field is
+    /// linear (no |X| kink for the engines to cross at the separation).
+    damped: bool,
+}
+
+impl<R: Real> HuntCrossley<R> {
+    /// The law with damping σ ≥ 0 and exponent n ≥ 1 (every value of an enclosure); the
+    /// refusal names the parameter and its bounds.
+    pub fn new(sigma: R, n: R) -> Result<Self, String> {
+        if !(sigma.lo() >= 0.0 && sigma.hi().is_finite()) {
+            return Err(format!(
+                "the damping σ must be ≥ 0 and finite (got [{}, {}])",
+                sigma.lo(),
+                sigma.hi()
+            ));
+        }
+        if !(n.lo() >= 1.0 && n.hi().is_finite()) {
+            return Err(format!(
+                "the exponent n must be ≥ 1 and finite (got [{}, {}])",
+                n.lo(),
+                n.hi()
+            ));
+        }
+        let damped = !(sigma.lo() == 0.0 && sigma.hi() == 0.0);
+        Ok(Self {
+            sigma,
+            n: Exponent::new(n),
+            damped,
+        })
+    }
+
+    /// Hertz's law (σ = 0).
+    pub fn hertz(n: R) -> Result<Self, String> {
+        Self::new(R::zero(), n)
+    }
+
+    /// Hooke's law, the linear spring (n = 1, σ = 0).
+    pub fn hooke() -> Self {
+        Self::new(R::zero(), R::one()).expect("n = 1, σ = 0")
+    }
+}
+
+impl<R: Real> CollisionModel<R, 2> for HuntCrossley<R> {
+    const NAME: &'static str = "hunt-crossley";
+    const STATE_NAMES: [&'static str; 2] = ["X", "V"];
+
+    fn initial_state(&self) -> [R; 2] {
+        [R::zero(), -R::one()]
+    }
+
+    fn field<T: Scalar<R>>(&self, s: &[T; 2]) -> [T; 2] {
+        [s[1].clone(), self.force(s)]
+    }
+
+    /// F = −|X|^(n−1)X − σ|X|^n V.
+    fn force<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        let [x, v] = s;
+        if !self.damped {
+            return -x.spow_prepared(&self.n);
+        }
+        let (xs, xa) = x.spow_apow_prepared(&self.n);
+        -xs - (xa * v.clone()).scale(&self.sigma)
+    }
+
+    fn position<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        s[0].clone()
+    }
+
+    fn velocity<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        s[1].clone()
+    }
+}
 
 /// eˣ over a type: what the damping formulas need beyond [`Real`].
 pub trait Exp: Real {

@@ -15,7 +15,7 @@
 use super::bwhcl::BoucWenHertz;
 use super::params::{ModelKind, NdParams};
 use super::shc::half;
-use super::{CollisionModel, distance_to_slope_line, equilibrium_slope};
+use super::{BoucWenModel, CollisionModel, distance_to_slope_line, equilibrium_slope};
 use crate::arith::{Real, Scalar};
 
 /// NDBWMCM with parameters P = (B, Γ, κ, σ, n, p).
@@ -78,13 +78,8 @@ impl<R: Real> Maxwell<R> {
 }
 
 impl<R: Real> CollisionModel<R, 4> for Maxwell<R> {
-    const KIND: ModelKind = ModelKind::Maxwell;
+    const NAME: &'static str = "maxwell";
     const STATE_NAMES: [&'static str; 4] = ["R", "Y", "Z", "W"];
-    const SWITCHING: [usize; 3] = [1, 2, 3];
-
-    fn params(&self) -> &NdParams<R> {
-        &self.params
-    }
 
     fn initial_state(&self) -> [R; 4] {
         [R::zero(), R::zero(), R::zero(), -R::one()]
@@ -127,6 +122,14 @@ impl<R: Real> CollisionModel<R, 4> for Maxwell<R> {
     /// V = Ṙ + Ẏ (eq:BWMCM_nd_output).
     fn velocity<T: Scalar<R>>(&self, s: &[T; 4]) -> T {
         self.q(s)
+    }
+}
+
+impl<R: Real> BoucWenModel<R, 4> for Maxwell<R> {
+    const KIND: ModelKind = ModelKind::Maxwell;
+
+    fn params(&self) -> &NdParams<R> {
+        &self.params
     }
 
     /// 𝒱 = (R + σQ)² + Q²/2 + κ/(p+1)|Y|^(p+1) + κ_c/(p+1)|Z|^(p+1) (sec:analysis_BWMCM).

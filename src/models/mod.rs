@@ -4,11 +4,15 @@
 //! - [`bwhcl`]: the Bouc–Wen–Hertz law (eq:BWHCL);
 //! - [`shc`]: BWSHCCM / NDBWSHCCM (eq:BWSHCCM, eq:BWSHCCM_nd), Lyapunov function, 𝓔;
 //! - [`maxwell`]: BWMCM / NDBWMCM (eq:BWMCM, eq:BWMCM_nd, eq:BWMCM_nd_output), Lyapunov, 𝓔;
+//! - [`hunt_crossley`]: the classical Simon–Hunt–Crossley law (Hertz and Hooke as its special
+//!   cases), its published damping formulas and its exact restitution relation;
+//! - [`kelvin_voigt`]: the linear Kelvin–Voigt law;
 //! - [`params`]: parameter sets and the admissible set 𝓟;
 //! - [`scaling`]: nondimensionalization both ways and the base-parameter map 𝓟(P*, v0).
 
 pub mod bwhcl;
 pub mod hunt_crossley;
+pub mod kelvin_voigt;
 pub mod maxwell;
 pub mod params;
 pub mod scaling;
@@ -20,28 +24,36 @@ pub use shc::Shc;
 
 use crate::arith::{Real, Scalar};
 
-/// A nondimensional collision model with N states: an autonomous field f, the contact force
-/// F_P, the outputs X and V, the Lyapunov function 𝒱 and the equilibrium set 𝓔.
+/// A nondimensional collision model with N states: an autonomous field f from an initial
+/// state, the contact force F and the outputs X and V — what the engines integrate and what
+/// T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0} and e = V(T_s) are read from. The Bouc–Wen models add their
+/// parameters, Lyapunov function and equilibrium set ([`BoucWenModel`]); the classical laws
+/// ([`hunt_crossley`], [`kelvin_voigt`]) are collision models only.
 pub trait CollisionModel<R: Real, const N: usize>: Clone + Send + Sync {
-    /// Which model this is.
-    const KIND: ModelKind;
+    /// The model's name in output (as in the CLI: "shc", "maxwell", "hunt-crossley", …).
+    const NAME: &'static str;
     /// The state symbols, in order.
     const STATE_NAMES: [&'static str; N];
-    /// Components whose sign changes are the field's switching surfaces (where |·| has a kink
-    /// or |·|^q a branch point): the rigorous engine never expands across them.
-    const SWITCHING: [usize; 3];
 
-    fn params(&self) -> &NdParams<R>;
-    /// The initial state of the collision (X = Z = 0, V = −1; R = Y = Z = 0, W = −1).
+    /// The initial state of the collision (the contact starts at X = 0 with V = −1).
     fn initial_state(&self) -> [R; N];
     /// The state function f (the right-hand side of the model's equation).
     fn field<T: Scalar<R>>(&self, s: &[T; N]) -> [T; N];
-    /// The contact force F_P.
+    /// The contact force F.
     fn force<T: Scalar<R>>(&self, s: &[T; N]) -> T;
     /// The relative position X (an output for the Maxwell model).
     fn position<T: Scalar<R>>(&self, s: &[T; N]) -> T;
     /// The relative velocity V (an output for the Maxwell model).
     fn velocity<T: Scalar<R>>(&self, s: &[T; N]) -> T;
+}
+
+/// The paper's two Bouc–Wen collision models: a [`CollisionModel`] with the parameter set P,
+/// the Lyapunov function 𝒱 of its appendix and its equilibrium set 𝓔.
+pub trait BoucWenModel<R: Real, const N: usize>: CollisionModel<R, N> {
+    /// Which model this is.
+    const KIND: ModelKind;
+
+    fn params(&self) -> &NdParams<R>;
     /// The Lyapunov function 𝒱 of the model's appendix.
     fn lyapunov<T: Scalar<R>>(&self, s: &[T; N]) -> T;
     /// 𝒱̇ in the appendix's closed form (not ⟨∇𝒱, f⟩: tests compare the two).

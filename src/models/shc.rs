@@ -10,7 +10,7 @@
 
 use super::bwhcl::BoucWenHertz;
 use super::params::{ModelKind, NdParams};
-use super::{CollisionModel, distance_to_slope_line, equilibrium_slope};
+use super::{BoucWenModel, CollisionModel, distance_to_slope_line, equilibrium_slope};
 use crate::arith::{Real, Scalar};
 
 /// NDBWSHCCM with parameters P = (B, Γ, κ, σ, n, p).
@@ -41,13 +41,8 @@ impl<R: Real> Shc<R> {
 }
 
 impl<R: Real> CollisionModel<R, 3> for Shc<R> {
-    const KIND: ModelKind = ModelKind::Shc;
+    const NAME: &'static str = "shc";
     const STATE_NAMES: [&'static str; 3] = ["X", "Z", "V"];
-    const SWITCHING: [usize; 3] = [0, 1, 2];
-
-    fn params(&self) -> &NdParams<R> {
-        &self.params
-    }
 
     fn initial_state(&self) -> [R; 3] {
         [R::zero(), R::zero(), -R::one()]
@@ -75,6 +70,14 @@ impl<R: Real> CollisionModel<R, 3> for Shc<R> {
 
     fn velocity<T: Scalar<R>>(&self, s: &[T; 3]) -> T {
         s[2].clone()
+    }
+}
+
+impl<R: Real> BoucWenModel<R, 3> for Shc<R> {
+    const KIND: ModelKind = ModelKind::Shc;
+
+    fn params(&self) -> &NdParams<R> {
+        &self.params
     }
 
     /// 𝒱 = κ/(p+1)|X|^(p+1) + κ_c/(p+1)|Z|^(p+1) + V²/2 (sec:analysis_BWSHCCM).

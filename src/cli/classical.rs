@@ -1,0 +1,226 @@
+//! `bwcl classical`: T_s and e of a classical collision law (Hooke, Hertz, Hunt–Crossley,
+//! linear Kelvin–Voigt) on the f64 or the rigorous engine — the same engines and separation
+//! rule as the Bouc–Wen models ([`bwcl::models::hunt_crossley`], [`bwcl::models::kelvin_voigt`]).
+
+use super::CliError;
+use super::args::{ClassicalArgs, Format, LawArg};
+use super::output::{self, outward_pair};
+use bwcl::arith::Real;
+use bwcl::engines::taylor::TaylorOptions;
+use bwcl::fit::data::echo;
+use bwcl::models::CollisionModel;
+use bwcl::models::hunt_crossley::HuntCrossley;
+use bwcl::models::kelvin_voigt::KelvinVoigt;
+use bwcl::observables::decimal::{sci_up, width_up};
+use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::{FloatOptions, impact};
+use inari::Interval;
+use serde_json::json;
+
+/// The law's name on the command line.
+fn name(l: LawArg) -> &'static str {
+    match l {
+        LawArg::Hooke => "hooke",
+        LawArg::Hertz => "hertz",
+        LawArg::HuntCrossley => "hunt-crossley",
+        LawArg::KelvinVoigt => "kelvin-voigt",
+    }
+}
+
+/// A parameter as written, parsed in the arithmetic `R` (a decimal enclosed exactly by the
+/// interval types), or refused naming the option.
+fn value<R: Real>(opt: &str, text: &str) -> Result<R, CliError> {
+    R::parse_decimal(text)
+        .map_err(|_| CliError::Input(format!("--{opt} '{}' is not a number", echo(text))))
+}
+
+/// Which parameters the law takes; any other given is refused.
+fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
+    let takes = |opt: &str| {
+        matches!(
+            (a.law, opt),
+            (LawArg::Hertz | LawArg::HuntCrossley, "n")
+                | (LawArg::HuntCrossley, "sigma")
+                | (LawArg::KelvinVoigt, "zeta")
+        )
+    };
+    for (opt, given) in [("n", &a.n), ("sigma", &a.sigma), ("zeta", &a.zeta)] {
+        if given.is_some() && !takes(opt) {
+            return Err(CliError::Input(format!(
+                "--{opt} is not a parameter of the law {}",
+                name(a.law)
+            )));
+        }
+    }
+    let needs = match a.law {
+        LawArg::HuntCrossley if a.sigma.is_none() => Some("--sigma"),
+        LawArg::KelvinVoigt if a.zeta.is_none() => Some("--zeta"),
+        _ => None,
+    };
+    match needs {
+        Some(opt) => Err(CliError::Input(format!(
+            "the law {} needs {opt}",
+            name(a.law)
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// One case's result: (T_s, e) as intervals (points for the f64 engine).
+type Result2 = Result<(Interval, Interval), String>;
+
+fn run_model<M>(rigorous: Option<&M>, float: Option<&impl CollisionModel<f64, 2>>) -> Result2
+where
+    M: CollisionModel<Interval, 2>,
+{
+    if let Some(m) = rigorous {
+        return rigorous_impact(m, &TaylorOptions::default())
+            .map(|r| (r.ts, r.e))
+            .map_err(|e| e.reason);
+    }
+    let m = float.expect("one engine");
+    let r = impact(m, &FloatOptions::default()).map_err(|e| e.to_string())?;
+    let ts = r.ts.ok_or("no separation before the horizon")?;
+    let p = |x: f64| Interval::try_from((x, x)).unwrap();
+    Ok((p(ts), p(r.e)))
+}
+
+/// Builds the law in both arithmetics and runs the chosen engine.
+fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
+    let n = a.n.as_deref().unwrap_or("1.5");
+    let given: Vec<String> = params(a)
+        .iter()
+        .map(|(k, v)| format!("--{k} '{}'", echo(v)))
+        .collect();
+    let bad = |m: String| CliError::Input(format!("{} {}: {m}", name(a.law), given.join(" ")));
+    macro_rules! go {
+        ($iv:expr, $fl:expr) => {{
+            if a.rigorous {
+                let m = $iv.map_err(bad)?;
+                Ok(run_model(Some(&m), None::<&KelvinVoigt<f64>>))
+            } else {
+                let m = $fl.map_err(bad)?;
+                Ok(run_model(None::<&KelvinVoigt<Interval>>, Some(&m)))
+            }
+        }};
+    }
+    match a.law {
+        LawArg::Hooke => go!(
+            Ok::<_, String>(HuntCrossley::<Interval>::hooke()),
+            Ok::<_, String>(HuntCrossley::<f64>::hooke())
+        ),
+        LawArg::Hertz => go!(
+            HuntCrossley::hertz(value::<Interval>("n", n)?),
+            HuntCrossley::hertz(value::<f64>("n", n)?)
+        ),
+        LawArg::HuntCrossley => {
+            let s = a.sigma.as_deref().unwrap_or_default();
+            go!(
+                HuntCrossley::new(value::<Interval>("sigma", s)?, value::<Interval>("n", n)?),
+                HuntCrossley::new(value::<f64>("sigma", s)?, value::<f64>("n", n)?)
+            )
+        }
+        LawArg::KelvinVoigt => {
+            let z = a.zeta.as_deref().unwrap_or_default();
+            go!(
+                KelvinVoigt::new(value::<Interval>("zeta", z)?),
+                KelvinVoigt::new(value::<f64>("zeta", z)?)
+            )
+        }
+    }
+}
+
+/// The parameters as given, for the output.
+fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
+    let mut p = Vec::new();
+    if matches!(a.law, LawArg::Hertz | LawArg::HuntCrossley) {
+        p.push(("n", a.n.clone().unwrap_or_else(|| "1.5".into())));
+    }
+    if let Some(s) = &a.sigma {
+        p.push(("sigma", s.clone()));
+    }
+    if let Some(z) = &a.zeta {
+        p.push(("zeta", z.clone()));
+    }
+    p
+}
+
+pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
+    check_options(a)?;
+    let result = compute(a)?;
+    let law = name(a.law);
+    let pars = params(a);
+    let bytes = match (&result, a.format) {
+        (Err(why), Format::Json) => {
+            let v = json!({"law": law, "params": pars.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(), "error": why});
+            let mut b = serde_json::to_vec_pretty(&v).unwrap();
+            b.push(b'\n');
+            b
+        }
+        (Err(why), _) => format!(
+            "{law}: not {}: {why}\n",
+            if a.rigorous { "proved" } else { "integrated" }
+        )
+        .into_bytes(),
+        (Ok((ts, e)), Format::Json) => {
+            let cell = |x: &Interval| -> serde_json::Value {
+                if a.rigorous {
+                    json!(outward_pair(*x))
+                } else {
+                    json!(x.inf())
+                }
+            };
+            let v = json!({
+                "law": law,
+                "params": pars.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
+                "rigorous": a.rigorous,
+                "ts": cell(ts),
+                "e": cell(e),
+            });
+            let mut b = serde_json::to_vec_pretty(&v).unwrap();
+            b.push(b'\n');
+            b
+        }
+        (Ok((ts, e)), f) => {
+            let p: Vec<String> = pars.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let (head, row): (Vec<&str>, Vec<String>) = if a.rigorous {
+                let [tl, th] = outward_pair(*ts);
+                let [el, eh] = outward_pair(*e);
+                (
+                    vec![
+                        "law", "params", "ts_lo", "ts_hi", "width_ts", "e_lo", "e_hi", "width_e",
+                    ],
+                    vec![
+                        law.into(),
+                        p.join(" "),
+                        tl,
+                        th,
+                        sci_up(width_up(ts.inf(), ts.sup()), 3),
+                        el,
+                        eh,
+                        sci_up(width_up(e.inf(), e.sup()), 3),
+                    ],
+                )
+            } else {
+                (
+                    vec!["law", "params", "ts", "e"],
+                    vec![
+                        law.into(),
+                        p.join(" "),
+                        output::num(ts.inf()),
+                        output::num(e.inf()),
+                    ],
+                )
+            };
+            match f {
+                Format::Csv => output::csv(&head, [row])?,
+                _ => output::table(&head, &[row]).into_bytes(),
+            }
+        }
+    };
+    output::emit(None, &bytes)?;
+    Ok(match result {
+        Ok(_) => super::EXIT_OK,
+        Err(_) => super::EXIT_FAILED,
+    })
+}
