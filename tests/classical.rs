@@ -8,12 +8,15 @@
 //!   (energy: V²/2 + |X|^(n+1)/(n+1) = 1/2, T_s = 2∫₀^{X_m} dX/|V|);
 //! - Hunt–Crossley: e from the restitution law (`tests/common`, 400 bits);
 //! - linear Kelvin–Voigt (ζ < 1): T_s = (π − φ)/ω, e = exp(−ζ T_s), ω = √(1 − ζ²),
-//!   φ = atan2(2ζω, 1 − 2ζ²) (src/models/kelvin_voigt.rs).
+//!   φ = atan2(2ζω, 1 − 2ζ²) (src/models/kelvin_voigt.rs);
+//! - linear Maxwell (c̃ > 1/2): T_s = π/ω, e = exp(−βπ/ω), β = 1/(2c̃), ω = √(1 − β²)
+//!   (src/models/linear_maxwell.rs).
 
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::CollisionModel;
 use bwcl::models::hunt_crossley::HuntCrossley;
 use bwcl::models::kelvin_voigt::KelvinVoigt;
+use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -156,6 +159,24 @@ fn kelvin_voigt_separates_where_its_force_vanishes() {
 }
 
 #[test]
+fn linear_maxwell_separates_when_its_spring_relaxes() {
+    for c in [0.75, 2.0, 10.0] {
+        let beta = Float::with_val(BITS, 1u32 / f(2.0 * c));
+        let w = Float::with_val(BITS, 1u32 - Float::with_val(BITS, &beta * &beta)).sqrt();
+        let ts = Float::with_val(BITS, Constant::Pi) / &w;
+        let e = Float::with_val(BITS, -Float::with_val(BITS, &beta * &ts)).exp();
+        let m = LinearMaxwell::new(Interval::try_from((c, c)).unwrap()).unwrap();
+        let r = rigorous_impact(&m, &TaylorOptions::default()).expect("proved");
+        holds(r.e, &bracket(&e), "linear Maxwell e");
+        holds(r.ts, &bracket(&ts), "linear Maxwell T_s");
+        let fr = impact(&LinearMaxwell::new(c).unwrap(), &FloatOptions::default()).unwrap();
+        assert!((fr.e - e.to_f64()).abs() < 1e-9, "c = {c}");
+        assert!((fr.ts.unwrap() - ts.to_f64()).abs() < 1e-9, "c = {c}");
+    }
+    assert!(LinearMaxwell::new(0.0).is_err() && LinearMaxwell::new(-1.0).is_err());
+}
+
+#[test]
 fn negative_control_a_wrong_closed_form_is_refused() {
     // the Kelvin–Voigt CoR is not exp(−ζπ/ω) (the separation at δ = 0 instead of F = 0)
     let zeta = 0.3;
@@ -222,6 +243,24 @@ fn the_cli_refuses_bad_parameters_in_one_line() {
         vec!["classical", "--law", "hertz", "--n", "0.5", "--rigorous"],
         vec!["classical", "--law", "kelvin-voigt", "--zeta", "abc\u{1b}"],
         vec!["classical", "--law", "coulomb"],
+        vec!["classical", "--law", "linear-maxwell"],
+        vec![
+            "classical",
+            "--law",
+            "linear-maxwell",
+            "--c",
+            "0",
+            "--rigorous",
+        ],
+        vec![
+            "classical",
+            "--law",
+            "kelvin-voigt",
+            "--zeta",
+            "0.3",
+            "--c",
+            "1",
+        ],
     ] {
         let o = common::bwcl(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}");

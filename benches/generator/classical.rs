@@ -9,6 +9,7 @@
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::hunt_crossley::HuntCrossley;
 use bwcl::models::kelvin_voigt::KelvinVoigt;
+use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::models::scaling::nd_from_base;
 use bwcl::models::{CollisionModel, ModelKind, NdParams, Shc};
 use bwcl::observables::rigorous::rigorous_impact;
@@ -43,6 +44,7 @@ fn main() {
     let hertz = HuntCrossley::hertz(iv(1.5)).unwrap();
     let hc = HuntCrossley::new(iv(0.75), iv(1.5)).unwrap();
     let kv = KelvinVoigt::new(iv(0.3)).unwrap();
+    let lm = LinearMaxwell::new(iv(2.0)).unwrap();
     let names = [
         "SHC DSS v0 = 1",
         "Hooke",
@@ -53,7 +55,14 @@ fn main() {
     let mut times = vec![Vec::new(); names.len()];
     let mut widths = vec![0.0; names.len()];
     for _ in 0..reps {
-        let r = [run(&shc), run(&hooke), run(&hertz), run(&hc), run(&kv)];
+        let r = [
+            run(&shc),
+            run(&hooke),
+            run(&hertz),
+            run(&hc),
+            run(&kv),
+            run(&lm),
+        ];
         for (i, (t, w)) in r.into_iter().enumerate() {
             times[i].push(t);
             widths[i] = w;

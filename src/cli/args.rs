@@ -367,14 +367,15 @@ pub enum Command {
     )]
     Laws(LawsArgs),
     /// T_s and e of a classical collision law (Hooke, Hertz, Hunt–Crossley, linear
-    /// Kelvin–Voigt), nondimensional, float or proved.
+    /// Kelvin–Voigt, linear Maxwell), nondimensional, float or proved.
     #[command(
         long_about = "T_s and e of a classical collision law on the same engines as the Bouc–Wen \
                       models, in the nondimensional form (δ = L·X, t = T·√(m/k)-type scaling, \
                       X(0) = 0, V(0) = −1): hooke X″ = −X; hertz X″ = −|X|^(n−1)X \
                       [--n, default 1.5]; hunt-crossley X″ = −|X|^(n−1)X − σ|X|^n X′ \
                       (σ = χv0/k; --sigma, --n); kelvin-voigt X″ = −X − 2ζX′ (ζ = c/(2√(mk)); \
-                      --zeta). Separation: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0}, e = V(T_s) (for \
+                      --zeta); linear-maxwell X″ = −(X − Y), Y′ = (X − Y)/c̃ (c̃ = c/√(mk); \
+                      --c). Separation: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0}, e = V(T_s) (for \
                       Hunt–Crossley the return to X = 0, for Kelvin–Voigt where the force \
                       vanishes). With --rigorous the parameters are enclosed as written.",
         after_long_help = "Examples:\n  bwcl classical --law hertz --n 1.5 --rigorous\n  \
@@ -395,6 +396,8 @@ pub enum LawArg {
     HuntCrossley,
     /// Linear Kelvin–Voigt: X″ = −X − 2ζX′.
     KelvinVoigt,
+    /// Linear Maxwell: X″ = −(X − Y), Y′ = (X − Y)/c̃.
+    LinearMaxwell,
 }
 
 #[derive(Args, Debug)]
@@ -411,6 +414,9 @@ pub struct ClassicalArgs {
     /// The damping ratio ζ = c/(2√(mk)) ≥ 0 (kelvin-voigt).
     #[arg(long, allow_hyphen_values = true)]
     pub zeta: Option<String>,
+    /// The dashpot c̃ = c/√(mk) > 0 (linear-maxwell).
+    #[arg(long, allow_hyphen_values = true)]
+    pub c: Option<String>,
     /// Prove enclosures of T_s and e with the interval Taylor engine.
     #[arg(long)]
     pub rigorous: bool,

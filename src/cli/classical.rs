@@ -1,5 +1,5 @@
 //! `bwcl classical`: T_s and e of a classical collision law (Hooke, Hertz, Hunt–Crossley,
-//! linear Kelvin–Voigt) on the f64 or the rigorous engine — the same engines and separation
+//! linear Kelvin–Voigt, linear Maxwell) on the f64 or the rigorous engine — the same engines and separation
 //! rule as the Bouc–Wen models ([`bwcl::models::hunt_crossley`], [`bwcl::models::kelvin_voigt`]).
 
 use super::CliError;
@@ -11,6 +11,7 @@ use bwcl::fit::data::echo;
 use bwcl::models::CollisionModel;
 use bwcl::models::hunt_crossley::HuntCrossley;
 use bwcl::models::kelvin_voigt::KelvinVoigt;
+use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::observables::decimal::{sci_up, width_up};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
@@ -24,6 +25,7 @@ fn name(l: LawArg) -> &'static str {
         LawArg::Hertz => "hertz",
         LawArg::HuntCrossley => "hunt-crossley",
         LawArg::KelvinVoigt => "kelvin-voigt",
+        LawArg::LinearMaxwell => "linear-maxwell",
     }
 }
 
@@ -42,9 +44,15 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
             (LawArg::Hertz | LawArg::HuntCrossley, "n")
                 | (LawArg::HuntCrossley, "sigma")
                 | (LawArg::KelvinVoigt, "zeta")
+                | (LawArg::LinearMaxwell, "c")
         )
     };
-    for (opt, given) in [("n", &a.n), ("sigma", &a.sigma), ("zeta", &a.zeta)] {
+    for (opt, given) in [
+        ("n", &a.n),
+        ("sigma", &a.sigma),
+        ("zeta", &a.zeta),
+        ("c", &a.c),
+    ] {
         if given.is_some() && !takes(opt) {
             return Err(CliError::Input(format!(
                 "--{opt} is not a parameter of the law {}",
@@ -55,6 +63,7 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
     let needs = match a.law {
         LawArg::HuntCrossley if a.sigma.is_none() => Some("--sigma"),
         LawArg::KelvinVoigt if a.zeta.is_none() => Some("--zeta"),
+        LawArg::LinearMaxwell if a.c.is_none() => Some("--c"),
         _ => None,
     };
     match needs {
@@ -69,16 +78,13 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
 /// One case's result: (T_s, e) as intervals (points for the f64 engine).
 type Result2 = Result<(Interval, Interval), String>;
 
-fn run_model<M>(rigorous: Option<&M>, float: Option<&impl CollisionModel<f64, 2>>) -> Result2
-where
-    M: CollisionModel<Interval, 2>,
-{
-    if let Some(m) = rigorous {
-        return rigorous_impact(m, &TaylorOptions::default())
-            .map(|r| (r.ts, r.e))
-            .map_err(|e| e.reason);
-    }
-    let m = float.expect("one engine");
+fn run_rigorous<M: CollisionModel<Interval, N>, const N: usize>(m: &M) -> Result2 {
+    rigorous_impact(m, &TaylorOptions::default())
+        .map(|r| (r.ts, r.e))
+        .map_err(|e| e.reason)
+}
+
+fn run_float<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> Result2 {
     let r = impact(m, &FloatOptions::default()).map_err(|e| e.to_string())?;
     let ts = r.ts.ok_or("no separation before the horizon")?;
     let p = |x: f64| Interval::try_from((x, x)).unwrap();
@@ -96,11 +102,9 @@ fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
     macro_rules! go {
         ($iv:expr, $fl:expr) => {{
             if a.rigorous {
-                let m = $iv.map_err(bad)?;
-                Ok(run_model(Some(&m), None::<&KelvinVoigt<f64>>))
+                Ok(run_rigorous(&$iv.map_err(bad)?))
             } else {
-                let m = $fl.map_err(bad)?;
-                Ok(run_model(None::<&KelvinVoigt<Interval>>, Some(&m)))
+                Ok(run_float(&$fl.map_err(bad)?))
             }
         }};
     }
@@ -127,6 +131,13 @@ fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
                 KelvinVoigt::new(value::<f64>("zeta", z)?)
             )
         }
+        LawArg::LinearMaxwell => {
+            let c = a.c.as_deref().unwrap_or_default();
+            go!(
+                LinearMaxwell::new(value::<Interval>("c", c)?),
+                LinearMaxwell::new(value::<f64>("c", c)?)
+            )
+        }
     }
 }
 
@@ -141,6 +152,9 @@ fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
     }
     if let Some(z) = &a.zeta {
         p.push(("zeta", z.clone()));
+    }
+    if let Some(c) = &a.c {
+        p.push(("c", c.clone()));
     }
     p
 }

@@ -7,12 +7,14 @@
 //! - [`hunt_crossley`]: the classical Simon–Hunt–Crossley law (Hertz and Hooke as its special
 //!   cases), its published damping formulas and its exact restitution relation;
 //! - [`kelvin_voigt`]: the linear Kelvin–Voigt law;
+//! - [`linear_maxwell`]: the linear Maxwell law;
 //! - [`params`]: parameter sets and the admissible set 𝓟;
 //! - [`scaling`]: nondimensionalization both ways and the base-parameter map 𝓟(P*, v0).
 
 pub mod bwhcl;
 pub mod hunt_crossley;
 pub mod kelvin_voigt;
+pub mod linear_maxwell;
 pub mod maxwell;
 pub mod params;
 pub mod scaling;
@@ -28,7 +30,7 @@ use crate::arith::{Real, Scalar};
 /// state, the contact force F and the outputs X and V — what the engines integrate and what
 /// T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0} and e = V(T_s) are read from. The Bouc–Wen models add their
 /// parameters, Lyapunov function and equilibrium set ([`BoucWenModel`]); the classical laws
-/// ([`hunt_crossley`], [`kelvin_voigt`]) are collision models only.
+/// ([`hunt_crossley`], [`kelvin_voigt`], [`linear_maxwell`]) are collision models only.
 pub trait CollisionModel<R: Real, const N: usize>: Clone + Send + Sync {
     /// The model's name in output (as in the CLI: "shc", "maxwell", "hunt-crossley", …).
     const NAME: &'static str;
