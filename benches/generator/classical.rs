@@ -51,6 +51,7 @@ fn main() {
         "Hertz n = 1.5",
         "Hunt–Crossley σ = 0.75, n = 1.5",
         "Kelvin–Voigt ζ = 0.3",
+        "linear Maxwell c̃ = 2",
     ];
     let mut times = vec![Vec::new(); names.len()];
     let mut widths = vec![0.0; names.len()];

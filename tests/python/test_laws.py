@@ -16,7 +16,7 @@ def _cor(sigma):
     g = lambda u: -u - math.log1p(-u)  # noqa: E731
     c = g(-sigma)
     return brentq(lambda e: g(sigma * e) - c, 0.0, min(1.0, 1.0 / sigma) * (1 - 1e-15),
-                  xtol=1e-17, rtol=4.5e-16)
+                  xtol=1e-17, rtol=8.9e-16)
 
 
 def test_laws_matches_the_program(cli):
