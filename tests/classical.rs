@@ -234,6 +234,57 @@ fn the_cli_prints_outward_bounds_that_hold_the_closed_form() {
     );
 }
 
+/// A law tuned by a published formula: the ODE engine's proved e holds the closed form's (the
+/// `laws` command's), both read from the printed bounds as rationals.
+#[test]
+fn a_formula_tuned_law_agrees_with_the_closed_form() {
+    let r = |s: &str| bwcl::observables::decimal::parse_rational(s).unwrap();
+    for (f, t) in [
+        ("flores", "0.5"),
+        ("lankarani-nikravesh", "0.8"),
+        ("carvalho-martins", "0.3"),
+    ] {
+        let o = common::bwcl(&[
+            "classical",
+            "--law",
+            "hunt-crossley",
+            "--formula",
+            f,
+            "--e-star",
+            t,
+            "--rigorous",
+            "--format",
+            "csv",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8(o.stdout).unwrap();
+        let ode: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+        let range = format!("{t}..0.99");
+        let o = common::bwcl(&[
+            "laws",
+            "--formulas",
+            f,
+            "--e-star",
+            &range,
+            "--points",
+            "2",
+            "--format",
+            "csv",
+        ]);
+        let out = String::from_utf8(o.stdout).unwrap();
+        let closed: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!(closed[1], t);
+        assert!(
+            r(ode[5]) <= r(closed[4]) && r(closed[5]) <= r(ode[6]),
+            "{f}: {ode:?} {closed:?}"
+        );
+        if f == "carvalho-martins" {
+            // the exact damping gives the target back through the ODE too
+            assert!(r(ode[5]) <= r(t) && r(t) <= r(ode[6]));
+        }
+    }
+}
+
 #[test]
 fn the_cli_refuses_bad_parameters_in_one_line() {
     for args in [
@@ -244,6 +295,45 @@ fn the_cli_refuses_bad_parameters_in_one_line() {
         vec!["classical", "--law", "kelvin-voigt", "--zeta", "abc\u{1b}"],
         vec!["classical", "--law", "coulomb"],
         vec!["classical", "--law", "linear-maxwell"],
+        vec!["classical", "--law", "hunt-crossley", "--formula", "flores"],
+        vec![
+            "classical",
+            "--law",
+            "hunt-crossley",
+            "--formula",
+            "bogus",
+            "--e-star",
+            "0.5",
+        ],
+        vec![
+            "classical",
+            "--law",
+            "hunt-crossley",
+            "--formula",
+            "flores",
+            "--e-star",
+            "1",
+        ],
+        vec![
+            "classical",
+            "--law",
+            "hunt-crossley",
+            "--sigma",
+            "1",
+            "--formula",
+            "flores",
+            "--e-star",
+            "0.5",
+        ],
+        vec![
+            "classical",
+            "--law",
+            "hertz",
+            "--formula",
+            "flores",
+            "--e-star",
+            "0.5",
+        ],
         vec![
             "classical",
             "--law",

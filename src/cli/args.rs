@@ -373,7 +373,8 @@ pub enum Command {
                       models, in the nondimensional form (δ = L·X, t = T·√(m/k)-type scaling, \
                       X(0) = 0, V(0) = −1): hooke X″ = −X; hertz X″ = −|X|^(n−1)X \
                       [--n, default 1.5]; hunt-crossley X″ = −|X|^(n−1)X − σ|X|^n X′ \
-                      (σ = χv0/k; --sigma, --n); kelvin-voigt X″ = −X − 2ζX′ (ζ = c/(2√(mk)); \
+                      (σ = χv0/k; --sigma, --n; or σ from a published formula: --formula \
+                      NAME --e-star E); kelvin-voigt X″ = −X − 2ζX′ (ζ = c/(2√(mk)); \
                       --zeta); linear-maxwell X″ = −(X − Y), Y′ = (X − Y)/c̃ (c̃ = c/√(mk); \
                       --c). Separation: T_s = inf{T ≥ 0 : F ≤ 0 ∧ V ≥ 0}, e = V(T_s) (for \
                       Hunt–Crossley the return to X = 0, for Kelvin–Voigt where the force \
@@ -417,6 +418,13 @@ pub struct ClassicalArgs {
     /// The dashpot c̃ = c/√(mk) > 0 (linear-maxwell).
     #[arg(long, allow_hyphen_values = true)]
     pub c: Option<String>,
+    /// hunt-crossley: the damping from a published formula σ(e*) (a name of `bwcl laws
+    /// --formulas`) instead of --sigma; needs --e-star.
+    #[arg(long, value_name = "NAME")]
+    pub formula: Option<String>,
+    /// hunt-crossley with --formula: the target CoR e*, 0 < e* < 1.
+    #[arg(long = "e-star", value_name = "E", allow_hyphen_values = true)]
+    pub e_star: Option<String>,
     /// Prove enclosures of T_s and e with the interval Taylor engine.
     #[arg(long)]
     pub rigorous: bool,

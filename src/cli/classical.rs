@@ -9,10 +9,11 @@ use bwcl::arith::Real;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::fit::data::echo;
 use bwcl::models::CollisionModel;
-use bwcl::models::hunt_crossley::HuntCrossley;
+use bwcl::models::hunt_crossley::{DampingFormula, HuntCrossley};
 use bwcl::models::kelvin_voigt::KelvinVoigt;
 use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::observables::decimal::{sci_up, width_up};
+use bwcl::observables::restitution::{Big, formula_sigma as formula_sigma_of};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -45,6 +46,7 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
                 | (LawArg::HuntCrossley, "sigma")
                 | (LawArg::KelvinVoigt, "zeta")
                 | (LawArg::LinearMaxwell, "c")
+                | (LawArg::HuntCrossley, "formula" | "e-star")
         )
     };
     for (opt, given) in [
@@ -52,6 +54,8 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
         ("sigma", &a.sigma),
         ("zeta", &a.zeta),
         ("c", &a.c),
+        ("formula", &a.formula),
+        ("e-star", &a.e_star),
     ] {
         if given.is_some() && !takes(opt) {
             return Err(CliError::Input(format!(
@@ -60,8 +64,17 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
             )));
         }
     }
+    if a.sigma.is_some() && (a.formula.is_some() || a.e_star.is_some()) {
+        return Err(CliError::Input(
+            "give the damping either as --sigma or as --formula with --e-star, not both".into(),
+        ));
+    }
     let needs = match a.law {
-        LawArg::HuntCrossley if a.sigma.is_none() => Some("--sigma"),
+        LawArg::HuntCrossley if a.formula.is_some() && a.e_star.is_none() => Some("--e-star"),
+        LawArg::HuntCrossley if a.e_star.is_some() && a.formula.is_none() => Some("--formula"),
+        LawArg::HuntCrossley if a.sigma.is_none() && a.formula.is_none() => {
+            Some("--sigma (or --formula with --e-star)")
+        }
         LawArg::KelvinVoigt if a.zeta.is_none() => Some("--zeta"),
         LawArg::LinearMaxwell if a.c.is_none() => Some("--c"),
         _ => None,
@@ -91,6 +104,34 @@ fn run_float<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> Result2 {
     Ok((p(ts), p(r.e)))
 }
 
+/// σ of `--formula` at `--e-star` (0 < e* < 1, enclosed as written): an enclosure for the
+/// rigorous engine and a double for the float one (the exact damping through its proved
+/// bracket).
+fn formula_sigma(a: &ClassicalArgs) -> Result<(Interval, f64), CliError> {
+    let key = a.formula.as_deref().unwrap_or_default();
+    let f = DampingFormula::from_key(key).ok_or_else(|| {
+        CliError::Input(format!(
+            "--formula '{}' is not a formula (one of {})",
+            echo(key),
+            DampingFormula::ALL.map(|f| f.key()).join(", ")
+        ))
+    })?;
+    let text = a.e_star.as_deref().unwrap_or_default();
+    let bad = || {
+        CliError::Input(format!(
+            "--e-star '{}' must be a target CoR in (0, 1)",
+            echo(text)
+        ))
+    };
+    let e = Big::parse_decimal(text).map_err(|_| bad())?;
+    if e.lo() <= 0.0 || e.hi() >= 1.0 {
+        return Err(bad());
+    }
+    let s = formula_sigma_of(f, &e).map_err(|m| CliError::Failed(format!("σ of {key}: {m}")))?;
+    let si = s.to_interval();
+    Ok((si, si.mid()))
+}
+
 /// Builds the law in both arithmetics and runs the chosen engine.
 fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
     let n = a.n.as_deref().unwrap_or("1.5");
@@ -117,6 +158,13 @@ fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
             HuntCrossley::hertz(value::<Interval>("n", n)?),
             HuntCrossley::hertz(value::<f64>("n", n)?)
         ),
+        LawArg::HuntCrossley if a.formula.is_some() => {
+            let (si, sf) = formula_sigma(a)?;
+            go!(
+                HuntCrossley::new(si, value::<Interval>("n", n)?),
+                HuntCrossley::new(sf, value::<f64>("n", n)?)
+            )
+        }
         LawArg::HuntCrossley => {
             let s = a.sigma.as_deref().unwrap_or_default();
             go!(
@@ -155,6 +203,12 @@ fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
     }
     if let Some(c) = &a.c {
         p.push(("c", c.clone()));
+    }
+    if let Some(f) = &a.formula {
+        p.push(("formula", f.clone()));
+    }
+    if let Some(e) = &a.e_star {
+        p.push(("e_star", e.clone()));
     }
     p
 }
