@@ -18,7 +18,9 @@ R, Y, Z, W). For a collision starting at X = Z = 0, V = −1 the package compute
 - :func:`cost`, :func:`fit` — the cost J (eq:J) of a base set P* on measured CoR data and
   its minimization over 𝓟 (seeded multi-start Nelder–Mead);
 - :func:`laws` — the published Hunt–Crossley damping formulas χ(e*) against the CoR the law
-  really produces, proved.
+  really produces, proved;
+- :func:`classical` — T_s and e of the classical laws (Hooke, Hertz, Hunt–Crossley, linear
+  Kelvin–Voigt and Maxwell) on the same engines, float or proved.
 
 Parameters come as in the CLI (``bwcl --help``): exactly one of
 
@@ -64,6 +66,8 @@ __all__ = [
     "laws",
     "LawsResult",
     "FormulaErrors",
+    "classical",
+    "ClassicalResult",
     "IdentifyResult",
     "profile",
     "CorResult",
@@ -960,4 +964,6 @@ def profile(
 
 
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402
-from .laws import FORMULAS, FormulaErrors, LawsResult, laws  # noqa: E402
+from .laws import (  # noqa: E402
+    FORMULAS, LAWS, ClassicalResult, FormulaErrors, LawsResult, classical, laws,
+)

@@ -10,6 +10,9 @@ from .identify import IdentifyResult as IdentifyResult
 from .identify import identify as identify
 from .identify import identify_dask as identify_dask
 from .laws import FORMULAS as FORMULAS
+from .laws import LAWS as LAWS
+from .laws import ClassicalResult as ClassicalResult
+from .laws import classical as classical
 from .laws import FormulaErrors as FormulaErrors
 from .laws import LawsResult as LawsResult
 from .laws import laws as laws

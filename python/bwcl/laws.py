@@ -124,3 +124,78 @@ def laws(
             runs=[(float(s["lo"]), float(s["hi"]), s["verdict"]) for s in f["segments"]],
         )
     return LawsResult(tol=float(d["tol"]), formulas=out, seconds=float(d["seconds"]))
+
+
+#: The classical laws of :func:`classical` (``bwcl classical --law``).
+LAWS = ("hooke", "hertz", "hunt-crossley", "kelvin-voigt", "linear-maxwell")
+
+
+@dataclass
+class ClassicalResult:
+    """T_s and e of a classical law, nondimensional. With ``rigorous`` the bounds are proved
+    (lower rounded down, upper up) and ``ts``/``e`` are their midpoints; otherwise the f64
+    engine's values, with lo = hi. ``proved`` is False (and ``reason`` says why) when the case
+    was not proved or not integrated."""
+
+    law: str
+    params: Dict[str, str]
+    rigorous: bool
+    proved: bool
+    ts_lo: float
+    ts_hi: float
+    e_lo: float
+    e_hi: float
+    reason: Optional[str] = None
+
+    @property
+    def ts(self) -> float:
+        return 0.5 * (self.ts_lo + self.ts_hi)
+
+    @property
+    def e(self) -> float:
+        return 0.5 * (self.e_lo + self.e_hi)
+
+
+def classical(
+    law: str,
+    *,
+    n: Any = None,
+    sigma: Any = None,
+    zeta: Any = None,
+    c: Any = None,
+    formula: Optional[str] = None,
+    e_star: Any = None,
+    rigorous: bool = False,
+    threads: Optional[int] = None,
+) -> ClassicalResult:
+    """T_s and e of a classical collision law, as ``bwcl classical``: ``law`` one of
+    :data:`LAWS`; ``n`` (hertz, hunt-crossley; default 1.5), ``sigma`` (hunt-crossley, or
+    ``formula`` and ``e_star``: σ from a published formula of :data:`FORMULAS`), ``zeta``
+    (kelvin-voigt), ``c`` (linear-maxwell). Numbers or decimal strings (read as written).
+    Bad input raises ValueError with the program's one line."""
+    if not isinstance(law, str):
+        raise TypeError("law must be a name (str)")
+    argv = ["classical", f"--law={law}", "--format=json"]
+    for name, x in (("n", n), ("sigma", sigma), ("zeta", zeta), ("c", c), ("e-star", e_star)):
+        if x is None:
+            continue
+        if isinstance(x, (bool, bytes)) or not isinstance(x, (str, numbers.Real)):
+            raise TypeError(f"{name} = {x!r:.40} is not a number")
+        argv.append(f"--{name}={x if isinstance(x, str) else repr(float(x))}")
+    if formula is not None:
+        if not isinstance(formula, str):
+            raise TypeError("formula must be a name (str)")
+        argv.append(f"--formula={formula}")
+    if rigorous:
+        argv.append("--rigorous")
+    d = json.loads(_bwcl.classical(argv, threads=threads))
+    if "error" in d:
+        nan = float("nan")
+        return ClassicalResult(d["law"], d["params"], bool(rigorous), False, nan, nan, nan, nan,
+                               d["error"])
+    if d["rigorous"]:
+        (tl, th), (el, eh) = d["ts"], d["e"]
+        return ClassicalResult(d["law"], d["params"], True, True, float(tl), float(th),
+                               float(el), float(eh))
+    return ClassicalResult(d["law"], d["params"], False, True, float(d["ts"]), float(d["ts"]),
+                           float(d["e"]), float(d["e"]))

@@ -214,6 +214,14 @@ fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
 }
 
 pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
+    let (bytes, code) = report(a)?;
+    output::emit(None, &bytes)?;
+    Ok(code)
+}
+
+/// The output of `bwcl classical` and its exit code (1 when the case was not proved or not
+/// integrated).
+pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
     check_options(a)?;
     let result = compute(a)?;
     let law = name(a.law);
@@ -286,9 +294,9 @@ pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
             }
         }
     };
-    output::emit(None, &bytes)?;
-    Ok(match result {
+    let code = match result {
         Ok(_) => super::EXIT_OK,
         Err(_) => super::EXIT_FAILED,
-    })
+    };
+    Ok((bytes, code))
 }

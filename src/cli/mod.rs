@@ -5,7 +5,7 @@
 // library and reuse its parsers, checks and rows
 pub(crate) mod args;
 mod band;
-mod classical;
+pub(crate) mod classical;
 pub(crate) mod commands;
 pub(crate) mod fit;
 pub(crate) mod identify;

@@ -14,6 +14,7 @@
 //! - [`fit`]: the cost J (eq:J) and the multi-start Nelder–Mead fit, with a progress callback;
 //! - [`identify`]: proved feasible sets of P* (set-membership identification);
 //! - [`laws`]: the Hunt–Crossley damping formulas' errors, proved;
+//! - [`classical`]: T_s and e of the classical collision laws;
 //! - [`run`]: argument parsing, errors, the thread pool and the GIL.
 
 // The CLI's sources, compiled into the library for the bindings (the program's entry point
@@ -23,6 +24,7 @@
 mod cli;
 
 mod arrays;
+mod classical;
 mod cor;
 mod digits;
 mod fit;
@@ -45,6 +47,7 @@ fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(fit::profile, m)?)?;
     m.add_function(wrap_pyfunction!(laws::laws, m)?)?;
+    m.add_function(wrap_pyfunction!(classical::classical, m)?)?;
     m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;

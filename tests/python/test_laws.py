@@ -61,3 +61,38 @@ def test_bad_input():
         bwcl.laws(e_star=(b"0.1", "0.9"))
     with pytest.raises(TypeError):
         bwcl.laws(points=2.5)
+
+
+def test_classical_against_the_closed_form(cli):
+    """Kelvin–Voigt: T_s = (π − φ)/ω, e = exp(−ζ T_s) (src/models/kelvin_voigt.rs); the proved
+    bounds hold it and match the program's JSON; the float engine agrees to 1e-9."""
+    z = 0.3
+    w = math.sqrt(1 - z * z)
+    ts = (math.pi - math.atan2(2 * z * w, 1 - 2 * z * z)) / w
+    e = math.exp(-z * ts)
+    r = bwcl.classical("kelvin-voigt", zeta="0.3", rigorous=True)
+    assert r.proved and r.rigorous
+    assert r.e_lo - 1e-15 <= e <= r.e_hi + 1e-15 and r.e_hi - r.e_lo < 1e-12
+    assert r.ts_lo - 1e-15 <= ts <= r.ts_hi + 1e-15
+    code, out, err = cli("classical", "--law", "kelvin-voigt", "--zeta", "0.3", "--rigorous",
+                         "--format", "json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert [r.e_lo, r.e_hi] == [float(x) for x in d["e"]]
+    f = bwcl.classical("kelvin-voigt", zeta=0.3)
+    assert not f.rigorous and abs(f.e - e) < 1e-9 and abs(f.ts - ts) < 1e-9
+    # Hunt–Crossley tuned by the exact formula gives its target back
+    cm = bwcl.classical("hunt-crossley", formula="carvalho-martins", e_star="0.5", rigorous=True)
+    assert cm.e_lo <= 0.5 <= cm.e_hi
+    assert cm.params == {"n": "1.5", "formula": "carvalho-martins", "e_star": "0.5"}
+
+
+def test_classical_bad_input():
+    with pytest.raises(ValueError, match="zeta"):
+        bwcl.classical("hertz", zeta=0.1)
+    with pytest.raises(ValueError, match="sigma"):
+        bwcl.classical("hunt-crossley")
+    with pytest.raises(ValueError):
+        bwcl.classical("coulomb")
+    with pytest.raises(TypeError):
+        bwcl.classical("hertz", n=b"1.5")
