@@ -16,7 +16,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _bwcl
+from . import _bwcl, _num, _threads
 
 #: The formulas' names (``bwcl laws --formulas``), in order of publication.
 FORMULAS = (
@@ -100,13 +100,10 @@ def laws(
         lo, hi = e_star
     except (TypeError, ValueError):
         raise TypeError("e_star must be a pair (lo, hi)") from None
-    for x in (lo, hi, tol):
-        if isinstance(x, (bool, bytes)) or not isinstance(x, (str, numbers.Real)):
-            raise TypeError(f"{x!r:.40} is not a number")
-    text = lambda x: x if isinstance(x, str) else repr(float(x))  # noqa: E731
-    argv = ["laws", f"--formulas={names}", f"--e-star={text(lo)}..{text(hi)}",
-            f"--points={int(points)}", f"--tol={text(tol)}", "--format=json"]
-    d = json.loads(_bwcl.laws(argv, threads=threads))
+    argv = ["laws", f"--formulas={names}",
+            f"--e-star={_num(lo, 'e_star')}..{_num(hi, 'e_star')}",
+            f"--points={int(points)}", f"--tol={_num(tol, 'tol')}", "--format=json"]
+    d = json.loads(_bwcl.laws(argv, threads=_threads(threads)))
     out = {}
     for f in d["formulas"]:
         pts = f["points"]
@@ -177,18 +174,15 @@ def classical(
         raise TypeError("law must be a name (str)")
     argv = ["classical", f"--law={law}", "--format=json"]
     for name, x in (("n", n), ("sigma", sigma), ("zeta", zeta), ("c", c), ("e-star", e_star)):
-        if x is None:
-            continue
-        if isinstance(x, (bool, bytes)) or not isinstance(x, (str, numbers.Real)):
-            raise TypeError(f"{name} = {x!r:.40} is not a number")
-        argv.append(f"--{name}={x if isinstance(x, str) else repr(float(x))}")
+        if x is not None:
+            argv.append(f"--{name}={_num(x, name)}")
     if formula is not None:
         if not isinstance(formula, str):
             raise TypeError("formula must be a name (str)")
         argv.append(f"--formula={formula}")
     if rigorous:
         argv.append("--rigorous")
-    d = json.loads(_bwcl.classical(argv, threads=threads))
+    d = json.loads(_bwcl.classical(argv, threads=_threads(threads)))
     if "error" in d:
         nan = float("nan")
         return ClassicalResult(d["law"], d["params"], bool(rigorous), False, nan, nan, nan, nan,

@@ -226,12 +226,10 @@ pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
     let result = compute(a)?;
     let law = name(a.law);
     let pars = params(a);
+    let named: std::collections::BTreeMap<_, _> = pars.iter().cloned().collect();
     let bytes = match (&result, a.format) {
         (Err(why), Format::Json) => {
-            let v = json!({"law": law, "params": pars.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(), "error": why});
-            let mut b = serde_json::to_vec_pretty(&v).unwrap();
-            b.push(b'\n');
-            b
+            output::json(&json!({"law": law, "params": named, "error": why}))?
         }
         (Err(why), _) => format!(
             "{law}: not {}: {why}\n",
@@ -246,16 +244,13 @@ pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
                     json!(x.inf())
                 }
             };
-            let v = json!({
+            output::json(&json!({
                 "law": law,
-                "params": pars.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
+                "params": named,
                 "rigorous": a.rigorous,
                 "ts": cell(ts),
                 "e": cell(e),
-            });
-            let mut b = serde_json::to_vec_pretty(&v).unwrap();
-            b.push(b'\n');
-            b
+            }))?
         }
         (Ok((ts, e)), f) => {
             let p: Vec<String> = pars.iter().map(|(k, v)| format!("{k}={v}")).collect();

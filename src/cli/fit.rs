@@ -2,7 +2,7 @@
 
 use super::args::{CostArgs, FitArgs, JacobianArg, ReportFormat, SearchArgs};
 use super::input::nd_error;
-use super::output::{self, ParamsOut, num};
+use super::output::{self, ParamsOut, json, num};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::fit::cost::weighted_cost;
 use bwcl::fit::minima::Minimum;
@@ -374,13 +374,6 @@ fn curve_table(c: &FitCurve) -> String {
         })
         .collect();
     table(&["v0", "e_data", "e_model", "residual"], &rows)
-}
-
-pub(crate) fn json<T: Serialize>(v: &T) -> Result<Vec<u8>, CliError> {
-    let mut b =
-        serde_json::to_vec_pretty(v).map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
-    b.push(b'\n');
-    Ok(b)
 }
 
 /// A progress bar on stderr, hidden when stderr is not a terminal.

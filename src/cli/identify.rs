@@ -206,10 +206,7 @@ pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError
         seconds: paving.seconds,
         boxes: paving.boxes.iter().map(box_out).collect(),
     };
-    let mut b = serde_json::to_vec_pretty(&out)
-        .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
-    b.push(b'\n');
-    Ok(b)
+    super::output::json(&out)
 }
 
 pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {

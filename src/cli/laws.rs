@@ -293,8 +293,5 @@ fn json(results: &[FormulaResult], tol: &str, seconds: f64) -> Result<Vec<u8>, C
             .collect(),
         seconds,
     };
-    let mut v = serde_json::to_vec_pretty(&out)
-        .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
-    v.push(b'\n');
-    Ok(v)
+    output::json(&out)
 }

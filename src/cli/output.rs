@@ -486,7 +486,7 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
 }
 
 /// Pretty JSON with a final newline.
-fn json<T: Serialize + ?Sized>(rows: &T) -> Result<Vec<u8>, CliError> {
+pub(crate) fn json<T: Serialize + ?Sized>(rows: &T) -> Result<Vec<u8>, CliError> {
     let mut v = serde_json::to_vec_pretty(rows)
         .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
     v.push(b'\n');

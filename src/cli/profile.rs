@@ -3,9 +3,9 @@
 
 use super::args::{ProfileArgs, ProfileFormat};
 use super::fit::{
-    FIT_MAX_STEPS, base_text, json, progress_bar, read_data, search_space, search_weights, table,
+    FIT_MAX_STEPS, base_text, progress_bar, read_data, search_space, search_weights, table,
 };
-use super::output::{self, ParamsOut, num};
+use super::output::{self, ParamsOut, json, num};
 use super::{CliError, EXIT_OK};
 use bwcl::fit::data::echo;
 use bwcl::fit::profile::{End, Profile, grid_range, profile as run_profile};

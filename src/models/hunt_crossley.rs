@@ -32,7 +32,7 @@
 //! al. 2018, *Mech. Mach. Theory*); the CoR the law really produces is e(σ(e*)), proved in
 //! [`crate::observables::restitution`].
 
-use super::CollisionModel;
+use super::ForceLaw;
 use crate::arith::mpfr::Mpi;
 use crate::arith::{Exponent, Real, Scalar};
 use inari::Interval;
@@ -93,34 +93,16 @@ impl<R: Real> HuntCrossley<R> {
     }
 }
 
-impl<R: Real> CollisionModel<R, 2> for HuntCrossley<R> {
+impl<R: Real> ForceLaw<R> for HuntCrossley<R> {
     const NAME: &'static str = "hunt-crossley";
-    const STATE_NAMES: [&'static str; 2] = ["X", "V"];
-
-    fn initial_state(&self) -> [R; 2] {
-        [R::zero(), -R::one()]
-    }
-
-    fn field<T: Scalar<R>>(&self, s: &[T; 2]) -> [T; 2] {
-        [s[1].clone(), self.force(s)]
-    }
 
     /// F = −|X|^(n−1)X − σ|X|^n V.
-    fn force<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        let [x, v] = s;
+    fn force_xv<T: Scalar<R>>(&self, x: &T, v: &T) -> T {
         if !self.damped {
             return -x.spow_prepared(&self.n);
         }
         let (xs, xa) = x.spow_apow_prepared(&self.n);
         -xs - (xa * v.clone()).scale(&self.sigma)
-    }
-
-    fn position<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        s[0].clone()
-    }
-
-    fn velocity<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        s[1].clone()
     }
 }
 

@@ -22,7 +22,7 @@
 //!
 //! (the closed form the tests check the engines against).
 
-use super::CollisionModel;
+use super::ForceLaw;
 use crate::arith::{Real, Scalar};
 
 /// The linear Kelvin–Voigt law, nondimensional, with damping ratio ζ ≥ 0.
@@ -47,28 +47,11 @@ impl<R: Real> KelvinVoigt<R> {
     }
 }
 
-impl<R: Real> CollisionModel<R, 2> for KelvinVoigt<R> {
+impl<R: Real> ForceLaw<R> for KelvinVoigt<R> {
     const NAME: &'static str = "kelvin-voigt";
-    const STATE_NAMES: [&'static str; 2] = ["X", "V"];
-
-    fn initial_state(&self) -> [R; 2] {
-        [R::zero(), -R::one()]
-    }
-
-    fn field<T: Scalar<R>>(&self, s: &[T; 2]) -> [T; 2] {
-        [s[1].clone(), self.force(s)]
-    }
 
     /// F = −X − 2ζV.
-    fn force<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        -s[0].clone() - s[1].scale(&self.two_zeta)
-    }
-
-    fn position<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        s[0].clone()
-    }
-
-    fn velocity<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
-        s[1].clone()
+    fn force_xv<T: Scalar<R>>(&self, x: &T, v: &T) -> T {
+        -x.clone() - v.scale(&self.two_zeta)
     }
 }

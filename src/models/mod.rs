@@ -49,6 +49,41 @@ pub trait CollisionModel<R: Real, const N: usize>: Clone + Send + Sync {
     fn velocity<T: Scalar<R>>(&self, s: &[T; N]) -> T;
 }
 
+/// A law whose contact force depends on the relative motion alone (no internal state): states
+/// (X, V), X′ = V, V′ = F(X, V) from X = 0, V = −1 — Hooke, Hertz, Hunt–Crossley, linear
+/// Kelvin–Voigt. Each such law gives only F; this is its [`CollisionModel`].
+pub trait ForceLaw<R: Real>: Clone + Send + Sync {
+    /// The law's name in output.
+    const NAME: &'static str;
+    /// The contact force F(X, V).
+    fn force_xv<T: Scalar<R>>(&self, x: &T, v: &T) -> T;
+}
+
+impl<R: Real, L: ForceLaw<R>> CollisionModel<R, 2> for L {
+    const NAME: &'static str = L::NAME;
+    const STATE_NAMES: [&'static str; 2] = ["X", "V"];
+
+    fn initial_state(&self) -> [R; 2] {
+        [R::zero(), -R::one()]
+    }
+
+    fn field<T: Scalar<R>>(&self, s: &[T; 2]) -> [T; 2] {
+        [s[1].clone(), self.force(s)]
+    }
+
+    fn force<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        self.force_xv(&s[0], &s[1])
+    }
+
+    fn position<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        s[0].clone()
+    }
+
+    fn velocity<T: Scalar<R>>(&self, s: &[T; 2]) -> T {
+        s[1].clone()
+    }
+}
+
 /// The paper's two Bouc–Wen collision models: a [`CollisionModel`] with the parameter set P,
 /// the Lyapunov function 𝒱 of its appendix and its equilibrium set 𝓔.
 pub trait BoucWenModel<R: Real, const N: usize>: CollisionModel<R, N> {

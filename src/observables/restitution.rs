@@ -49,14 +49,18 @@ fn sign(h: &Big) -> i8 {
     }
 }
 
+/// b − a < `tight` (a ≤ b).
+fn narrow(a: &Float, b: &Float, tight: f64) -> bool {
+    Float::with_val(128, b - a) < tight
+}
+
 /// Shrinks a bracket [a, b] of the root of an increasing function (sign(f(a)) = −1,
 /// sign(f(b)) = +1, proved): bisection while the midpoint's sign is decided, then each end
 /// tightened on its own towards the undecided midpoint; it stops early once b − a < `tight`.
 fn shrink(f: impl Fn(&Float) -> i8, mut a: Float, mut b: Float, tight: f64) -> (Float, Float) {
-    let narrow = |a: &Float, b: &Float| Float::with_val(128, b - a) < tight;
     let mut undecided = None;
     for _ in 0..MAX_BISECTIONS {
-        if narrow(&a, &b) {
+        if narrow(&a, &b, tight) {
             return (a, b);
         }
         let m = mid(&a, &b);
@@ -73,30 +77,31 @@ fn shrink(f: impl Fn(&Float) -> i8, mut a: Float, mut b: Float, tight: f64) -> (
         }
     }
     if let Some(m) = undecided {
-        let mut u = m.clone();
-        for _ in 0..MAX_BISECTIONS {
-            if narrow(&a, &u) {
-                break;
-            }
-            let c = mid(&a, &u);
-            if c <= a || c >= u {
-                break;
-            }
-            if f(&c) == -1 { a = c } else { u = c }
-        }
-        let mut u = m;
-        for _ in 0..MAX_BISECTIONS {
-            if narrow(&u, &b) {
-                break;
-            }
-            let c = mid(&u, &b);
-            if c <= u || c >= b {
-                break;
-            }
-            if f(&c) == 1 { b = c } else { u = c }
-        }
+        tighten(&f, &mut a, m.clone(), -1, tight);
+        tighten(&f, &mut b, m, 1, tight);
     }
     (a, b)
+}
+
+/// Moves `end`, where f has the proved sign `s`, towards `u` by bisection: a midpoint with the
+/// sign `s` proved becomes the end, any other becomes `u`; until the two are `tight` apart or
+/// adjacent at 128 bits.
+fn tighten(f: &impl Fn(&Float) -> i8, end: &mut Float, mut u: Float, s: i8, tight: f64) {
+    for _ in 0..MAX_BISECTIONS {
+        let (lo, hi) = if *end <= u { (&*end, &u) } else { (&u, &*end) };
+        if narrow(lo, hi, tight) {
+            break;
+        }
+        let c = mid(lo, hi);
+        if c <= *lo || c >= *hi {
+            break;
+        }
+        if f(&c) == s {
+            *end = c;
+        } else {
+            u = c;
+        }
+    }
 }
 
 /// σ as a number: finite and > 0.
