@@ -159,6 +159,31 @@ fn kelvin_voigt_separates_where_its_force_vanishes() {
 }
 
 #[test]
+fn overdamped_and_critical_kelvin_voigt_hold_their_closed_form() {
+    // ζ ≥ 1 (src/fit/laws.rs, the monotonicity proof): a = ζ − √(ζ² − 1),
+    // T_s = −4a ln a/(1 − a²), e = a^(2(1 + a²)/(1 − a²)); ζ = 1: T_s = 2, e = e^(−2)
+    for zeta in [1.0, 1.3, 5.0] {
+        let z = f(zeta);
+        let (ts, e) = if zeta == 1.0 {
+            (f(2.0), Float::with_val(BITS, -2).exp())
+        } else {
+            let r = Float::with_val(BITS, Float::with_val(BITS, &z * &z) - 1u32).sqrt();
+            let a = Float::with_val(BITS, &z - r);
+            let a2 = Float::with_val(BITS, &a * &a);
+            let one_m = Float::with_val(BITS, 1u32 - &a2);
+            let ln_a = Float::with_val(BITS, a.ln_ref());
+            let ts = Float::with_val(BITS, -Float::with_val(BITS, &a * &ln_a) * 4u32) / &one_m;
+            let pow = Float::with_val(BITS, Float::with_val(BITS, 1u32 + &a2) * 2u32) / &one_m;
+            (ts, Float::with_val(BITS, pow * ln_a).exp())
+        };
+        let (pe, pts) =
+            proved(&KelvinVoigt::new(Interval::try_from((zeta, zeta)).unwrap()).unwrap());
+        holds(pe, &bracket(&e), "overdamped Kelvin–Voigt e");
+        holds(pts, &bracket(&ts), "overdamped Kelvin–Voigt T_s");
+    }
+}
+
+#[test]
 fn linear_maxwell_separates_when_its_spring_relaxes() {
     for c in [0.75, 2.0, 10.0] {
         let beta = Float::with_val(BITS, 1u32 / f(2.0 * c));

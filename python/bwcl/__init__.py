@@ -20,7 +20,10 @@ R, Y, Z, W). For a collision starting at X = Z = 0, V = −1 the package compute
 - :func:`laws` — the published Hunt–Crossley damping formulas χ(e*) against the CoR the law
   really produces, proved;
 - :func:`classical` — T_s and e of the classical laws (Hooke, Hertz, Hunt–Crossley, linear
-  Kelvin–Voigt and Maxwell) on the same engines, float or proved.
+  Kelvin–Voigt and Maxwell) on the same engines, float or proved;
+- :func:`compare` — every model (Bouc–Wen and classical) fitted to the same CoR data, with
+  AIC/AICc/BIC and each classical law's proved feasible set (:func:`identify` takes the laws
+  too: ``model="hunt-crossley"``).
 
 Parameters come as in the CLI (``bwcl --help``): exactly one of
 
@@ -67,6 +70,7 @@ __all__ = [
     "LawsResult",
     "FormulaErrors",
     "classical",
+    "compare",
     "ClassicalResult",
     "IdentifyResult",
     "profile",
@@ -965,5 +969,5 @@ def profile(
 
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402
 from .laws import (  # noqa: E402
-    FORMULAS, LAWS, ClassicalResult, FormulaErrors, LawsResult, classical, laws,
+    FORMULAS, LAWS, ClassicalResult, FormulaErrors, LawsResult, classical, compare, laws,
 )

@@ -13,6 +13,7 @@ from .laws import FORMULAS as FORMULAS
 from .laws import LAWS as LAWS
 from .laws import ClassicalResult as ClassicalResult
 from .laws import classical as classical
+from .laws import compare as compare
 from .laws import FormulaErrors as FormulaErrors
 from .laws import LawsResult as LawsResult
 from .laws import laws as laws

@@ -44,6 +44,8 @@ class IdentifyResult:
     complete: bool
     processed: int
     seconds: float
+    #: A classical law's empty F: the rows that refute each range of its parameter.
+    certificate: Tuple[str, ...] = ()
 
     @property
     def empty(self) -> bool:
@@ -103,6 +105,7 @@ def _result(d: dict) -> IdentifyResult:
         feasible_hull=pairs(d["feasible_hull"]), counts=dict(d["counts"]),
         shares=dict(d["shares"]), verdict=d["verdict"], complete=d["complete"],
         processed=d["processed"], seconds=d["seconds"],
+        certificate=tuple(d.get("certificate", ())),
     )
 
 
@@ -110,14 +113,14 @@ def identify(
     model: str,
     data: Any = None,
     *,
-    bounds: Union[str, Mapping[str, Tuple[float, float]]],
+    bounds: Union[None, str, Mapping[str, Tuple[float, float]]] = None,
     error: Optional[float] = None,
     fix: Union[None, str, Mapping[str, float]] = None,
     base: Optional[Sequence[float]] = None,
     free: Optional[Sequence[str]] = None,
     tc_error: Optional[float] = None,
     no_tc: bool = False,
-    resolution: int = 128,
+    resolution: Optional[int] = None,
     time_limit: Optional[float] = None,
     max_boxes: Optional[int] = None,
     v0: Any = None,
@@ -132,13 +135,18 @@ def identify(
     parameters and their box ({"kappa": (0.4, 0.8)} or "kappa=0.4..0.8"; names B_b, Gamma_b,
     kappa, sigma_b, n, p, Greek accepted); the others are fixed by ``fix`` or ``base``
     (B_b, Γ_b, κ, σ_b, n, p). ``error``: the ±E of every e (a ``sigma`` column overrides it).
-    Data: a CSV file, or the arrays v0, e (and sigma, tc, tc_sigma). Bad input raises
-    ValueError with the program's one line."""
+    Data: a CSV file, or the arrays v0, e (and sigma, tc, tc_sigma). A classical law
+    (``model="hunt-crossley"``, "kelvin-voigt", "linear-maxwell", "hertz", "hooke") paves its
+    one parameter (``bounds`` optional: its useful range); an empty F comes with
+    ``certificate``, the rows that refute each range. ``resolution``: 128 for the Bouc–Wen
+    models, 2^20 for a law. Bad input raises ValueError with the program's one line."""
     path, temp = _data_file(data, v0, e, sigma, tc, tc_sigma)
     try:
-        argv = ["identify", f"--model={model}", f"--data={path}",
-                "--bounds=" + _spec(bounds, "bounds", True), f"--resolution={int(resolution)}",
-                "--format=json"]
+        argv = ["identify", f"--model={model}", f"--data={path}", "--format=json"]
+        if bounds is not None:
+            argv.append("--bounds=" + _spec(bounds, "bounds", True))
+        if resolution is not None:
+            argv.append(f"--resolution={int(resolution)}")
         if error is not None:
             argv.append(f"--error={float(error)!r}")
         if tc_error is not None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import numbers
+import os
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -193,3 +194,47 @@ def classical(
                                float(el), float(eh))
     return ClassicalResult(d["law"], d["params"], False, True, float(d["ts"]), float(d["ts"]),
                            float(d["e"]), float(d["e"]))
+
+
+def compare(
+    data: Any = None,
+    *,
+    models: Union[None, str, Sequence[str]] = None,
+    error: Any = None,
+    starts: int = 8,
+    seed: int = 1,
+    time_limit: Any = None,
+    v0: Any = None,
+    e: Any = None,
+    sigma: Any = None,
+    threads: Optional[int] = None,
+) -> List[Dict[str, Any]]:
+    """Every model fitted to the same CoR data, as ``bwcl compare``: a list of dicts, best AIC
+    first, each with model, k (parameters that enter e), J, aic, aicc, bic, delta_aic,
+    delta_bic, parameters (text), seconds and, with ``error`` (every e known to ±E), each
+    classical law's proved feasible set ``feasible`` and, when it is empty, ``certificate``
+    (the rows that refute each range of its parameter; ``refuted_everywhere``: for every
+    admissible value). ``models``: names among shc, maxwell, hunt-crossley, kelvin-voigt,
+    linear-maxwell, hertz, hooke (default all); ``starts``/``seed``: the Bouc–Wen fits'.
+    Data: a CSV file, or the arrays v0, e (and sigma). Bad input raises ValueError with the
+    program's one line."""
+    from .identify import _data_file
+
+    path, temp = _data_file(data, v0, e, sigma, None, None)
+    try:
+        argv = ["compare", f"--data={path}", f"--starts={_num(starts, 'starts')}",
+                f"--seed={_num(seed, 'seed')}", "--format=json"]
+        if models is not None:
+            if not isinstance(models, str):
+                if any(not isinstance(m, str) for m in models):
+                    raise TypeError("models must be names (str)")
+                models = ",".join(models)
+            argv.append(f"--models={models}")
+        if error is not None:
+            argv.append(f"--error={_num(error, 'error')}")
+        if time_limit is not None:
+            argv.append(f"--time-limit={_num(time_limit, 'time_limit')}")
+        return json.loads(_bwcl.compare(argv, threads=_threads(threads)))["rows"]
+    finally:
+        if temp:
+            os.unlink(path)

@@ -384,6 +384,19 @@ pub enum Command {
                            bwcl classical --law kelvin-voigt --zeta 0.3 --format json"
     )]
     Classical(ClassicalArgs),
+    /// Every model fitted to the same CoR data: J, AIC, AICc, BIC, and with --error each
+    /// classical law's proved feasible set.
+    #[command(
+        long_about = "Fit every model (the Bouc–Wen models and the classical laws, or --models) to \
+                      the same CoR data and compare them by J and the information criteria AIC, \
+                      AICc and BIC (Gaussian least squares; only differences mean anything). \
+                      With --error E, each classical law's feasible set is paved with the \
+                      rigorous engine: an empty one is a certificate that no law of the family \
+                      fits the data to ±E, naming the rows that refute each range.",
+        after_long_help = "Examples:\n  bwcl compare --data paper_repro/data/synthetic_dss.csv\n  \
+                           bwcl compare --data d.csv --models hunt-crossley,kelvin-voigt --error 0.02"
+    )]
+    Compare(CompareArgs),
 }
 
 /// A classical collision law.
@@ -474,9 +487,10 @@ pub const RESOLUTION: RangeInclusive<u64> = 1..=1 << 20;
 
 #[derive(Args, Debug)]
 pub struct IdentifyArgs {
-    /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
+    /// The model: shc (NDBWSHCCM), maxwell (NDBWMCM), or a classical law (its one parameter
+    /// paved over --bounds, default its whole useful range).
     #[arg(long, value_enum)]
-    pub model: ModelArg,
+    pub model: FamilyArg,
     /// The measured data: CSV with the header v0,e (optional columns sigma, tc, tc_sigma).
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
@@ -502,10 +516,12 @@ pub struct IdentifyArgs {
     /// The free parameters' names (a check: they must be the bounded ones).
     #[arg(long, value_name = "NAMES", allow_hyphen_values = true)]
     pub free: Option<String>,
-    /// Resolution: boxes are not split below 1/N of the starting box's side, 1 ≤ N ≤ 2^20.
-    #[arg(long, value_name = "N", default_value_t = 128, allow_hyphen_values = true,
+    /// Resolution: boxes are not split below 1/N of the starting box's side, 1 ≤ N ≤ 2^20
+    /// [default: 128; for a classical law 2^20, relative to the parameter's distance from its
+    /// floor].
+    #[arg(long, value_name = "N", allow_hyphen_values = true,
           value_parser = RangedU64ValueParser::<u64>::new().range(RESOLUTION))]
-    pub resolution: u64,
+    pub resolution: Option<u64>,
     /// The wall-clock budget, 0 < S ≤ 86400 seconds [default: 300]: when it runs out, the boxes
     /// not yet decided are reported undecided (everything reported stays proved; exit 1).
     #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = time_limit)]
@@ -536,9 +552,10 @@ pub enum ReportFormat {
 
 #[derive(Args, Debug)]
 pub struct FitArgs {
-    /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
+    /// The model: shc (NDBWSHCCM), maxwell (NDBWMCM), or a classical law (one parameter,
+    /// searched over its range: its best value, minima, standard error and 95 % interval).
     #[arg(long, value_enum)]
-    pub model: ModelArg,
+    pub model: FamilyArg,
     /// The measured data: CSV with the header v0,e.
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
@@ -894,6 +911,62 @@ pub struct TrajectoryArgs {
     #[arg(long, conflicts_with = "rigorous")]
     pub physical_units: bool,
     /// Write the CSV to FILE instead of stdout (created only when everything succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+/// A model fitted to data: a Bouc–Wen model or a classical law (`fit`, `identify`, `compare`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FamilyArg {
+    /// NDBWSHCCM: the Bouc–Wen–Simon–Hunt–Crossley model, P* = B_b, Γ_b, κ, σ_b, n, p.
+    Shc,
+    /// NDBWMCM: the Bouc–Wen–Maxwell model, P* = B_b, Γ_b, κ, σ_b, n, p.
+    Maxwell,
+    /// The linear spring (e = 1, no parameter).
+    Hooke,
+    /// Hertz's law (e = 1, no parameter).
+    Hertz,
+    /// Hunt–Crossley, σ = σ_b·v0 (parameter sigma_b = χ·(1 m/s)/k; e does not depend on n).
+    HuntCrossley,
+    /// Linear Kelvin–Voigt (parameter zeta = c/(2√(mk)); e the same at every speed).
+    KelvinVoigt,
+    /// Linear Maxwell (parameter c = c/√(mk) > 1/2; e the same at every speed).
+    LinearMaxwell,
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// The measured data: CSV with the header v0,e (a column sigma weights the rows; tc is
+    /// ignored).
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// The models, comma-separated [default: all: shc, maxwell, hunt-crossley, kelvin-voigt,
+    /// linear-maxwell, hertz, hooke].
+    #[arg(long, value_name = "NAMES", allow_hyphen_values = true)]
+    pub models: Option<String>,
+    /// Every e known to within ±E (E > 0): each classical law's feasible set is proved (empty:
+    /// a certificate that no law of the family fits the data to ±E).
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = decimal)]
+    pub error: Option<f64>,
+    /// Random starts of the Bouc–Wen fits, 0 ≤ N ≤ 256 (as `fit`).
+    #[arg(long, value_name = "N", default_value_t = 8, allow_hyphen_values = true,
+          value_parser = count(STARTS))]
+    pub starts: usize,
+    /// Seed of the Bouc–Wen fits' starts.
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1,
+        allow_hyphen_values = true
+    )]
+    pub seed: u64,
+    /// The wall-clock budget of each feasible set, 0 < S ≤ 86400 seconds [default: 300].
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = time_limit)]
+    pub time_limit: Option<f64>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
+    /// Write the output to FILE instead of stdout (replaced whole, never half-written).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
 }

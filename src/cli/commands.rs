@@ -48,6 +48,7 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
         Command::Profile(a) => super::profile::profile(&a),
         Command::Laws(a) => super::laws::laws(&a),
         Command::Classical(a) => super::classical::classical(&a),
+        Command::Compare(a) => super::compare::compare(&a),
         Command::Prove(p) => match p.what {
             super::args::ProveCommand::Monotone(m) => super::band::monotone(&m),
         },

@@ -129,10 +129,21 @@ pub(crate) fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
     CorData::read(path).map_err(|e| CliError::Input(format!("--data {e}")))
 }
 
+/// The Bouc–Wen model of `--model` (a classical law refused where only they apply).
+pub(crate) fn bouc_wen(m: super::args::FamilyArg) -> Result<ModelKind, CliError> {
+    m.kind().ok_or_else(|| {
+        CliError::Input(format!(
+            "--model {}: a classical law is fitted by `bwcl fit --model {0}` or `bwcl compare` \
+             (bwcl.compare in Python)",
+            m.key()
+        ))
+    })
+}
+
 /// The settings of `fit` from its arguments: --init parsed and checked against --starts and
 /// --p1 (the data are read separately).
 pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
-    let kind = ModelKind::from(a.model);
+    let kind = bouc_wen(a.model)?;
     let mut initial = Vec::new();
     if let Some(text) = &a.init {
         initial.push(
@@ -392,7 +403,11 @@ pub(crate) fn progress_bar(len: u64) -> ProgressBar {
 }
 
 pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
-    let kind = ModelKind::from(a.model);
+    let kind = match (a.model.kind(), a.model.law()) {
+        (Some(kind), _) => kind,
+        (_, Some(law)) => return super::compare::fit(a, law),
+        _ => unreachable!("a model or a law"),
+    };
     let data = read_data(&a.data)?;
     let mut opts = fit_options(a)?;
     opts.weights = Some(search_weights(&data, &a.search)?);

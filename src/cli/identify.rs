@@ -8,7 +8,6 @@ use super::progress::Progress;
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
 use bwcl::identify::setup::{Spec, problem};
-use bwcl::models::ModelKind;
 use bwcl::observables::decimal::Rounding;
 use inari::Interval;
 use serde::Serialize;
@@ -75,6 +74,9 @@ struct IdentifyOut<'a> {
     processed: usize,
     resolution: u64,
     seconds: f64,
+    /// A classical law's empty F: the rows that refute each range of its parameter.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    certificate: Vec<String>,
     boxes: Vec<BoxOut>,
 }
 
@@ -86,11 +88,33 @@ fn named(free: &[&'static str], h: &[(f64, f64)]) -> BTreeMap<&'static str, [Box
 }
 
 /// The verdict line.
-fn verdict(p: &Paving, free: &[&str]) -> String {
+fn verdict(p: &Paving, d: &Done) -> String {
+    let free = &d.free;
+    let what = if d.refuted.is_some() {
+        "parameter"
+    } else {
+        "P*"
+    };
+    if free.is_empty() {
+        return match p.boxes.first().map(|b| b.status) {
+            Some(Status::Feasible) => "proved: the law (e = 1) is consistent with the data".into(),
+            Some(Status::Infeasible) => {
+                "proved: the law (e = 1) is inconsistent with the data at these errors".into()
+            }
+            _ => "not proved either way: e = 1 lies on a row's bound (or the engine failed)".into(),
+        };
+    }
     match p.hull() {
-        None => "proved: no P* in the box is consistent with the data (F is empty: the model is \
-                 falsified by the data at these errors)"
-            .into(),
+        None => format!(
+            "proved: no {what} {} is consistent with the data (F is empty: the model is \
+             falsified by the data at these errors)",
+            if matches!(d.refuted, Some((_, _, true))) {
+                "at all (the box's refutations extend to the whole admissible set by the law's \
+                 monotone e)"
+            } else {
+                "in the box"
+            }
+        ),
         Some(h) => {
             let parts: Vec<String> = free
                 .iter()
@@ -104,12 +128,12 @@ fn verdict(p: &Paving, free: &[&str]) -> String {
                 })
                 .collect();
             let feasible = if p.counts()[0] > 0 {
-                "some P* are proved consistent"
+                "some values are proved consistent"
             } else {
                 "no box is proved feasible at this resolution"
             };
             format!(
-                "proved: every P* in the box consistent with the data has {}; {feasible}",
+                "proved: every {what} in the box consistent with the data has {}; {feasible}",
                 parts.join(", ")
             )
         }
@@ -118,17 +142,29 @@ fn verdict(p: &Paving, free: &[&str]) -> String {
 
 /// A paving done, with what its reports need.
 pub(crate) struct Done {
-    pub kind: ModelKind,
+    /// The model's name.
+    pub model: &'static str,
     pub rows: usize,
     pub start: Vec<Interval>,
     pub free: Vec<&'static str>,
     pub paving: Paving,
+    /// A classical law's refutations (with the data, to name the rows,
+    /// and whether they cover the parameter's whole admissible set).
+    pub refuted: Option<(
+        Vec<bwcl::identify::laws::Refutation>,
+        bwcl::fit::CorData,
+        bool,
+    )>,
 }
 
 /// Reads the data, builds the problem and paves the box (a progress bar on a terminal when
 /// `bar` is set).
 pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
-    let kind = ModelKind::from(a.model);
+    let kind = match (a.model.kind(), a.model.law()) {
+        (Some(kind), _) => kind,
+        (_, Some(law)) => return super::compare::identify(a, law, bar),
+        _ => unreachable!("a model or a law"),
+    };
     let data = read_data(&a.data)?;
     let spec = Spec {
         base: a.base.as_deref(),
@@ -140,7 +176,7 @@ pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
         no_tc: a.no_tc,
     };
     let (prob, start) = problem(kind, &data, &spec).map_err(CliError::Input)?;
-    let mut opts = Options::new(&start, a.resolution as f64);
+    let mut opts = Options::new(&start, a.resolution.unwrap_or(128) as f64);
     opts.max_boxes = a.max_boxes as usize;
     opts.taylor.deadline = Some(super::input::deadline(a.time_limit));
     opts.slope_taylor.deadline = opts.taylor.deadline;
@@ -163,11 +199,12 @@ pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
         b.finish();
     }
     Ok(Done {
-        kind,
+        model: kind.name(),
         rows: prob.rows.len(),
         start,
         free: prob.space.free_names(),
         paving,
+        refuted: None,
     })
 }
 
@@ -178,14 +215,14 @@ pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError
     let [sf, si, su] = paving.shares(start);
     let hull = paving.hull();
     let out = IdentifyOut {
-        model: d.kind.name(),
+        model: d.model,
         free: free.clone(),
         start: named(
             free,
             &start.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
         ),
         rows: d.rows,
-        verdict: verdict(paving, free),
+        verdict: verdict(paving, d),
         empty: hull.is_none(),
         hull: hull.as_ref().map(|h| named(free, h)),
         feasible_hull: paving.feasible_hull().map(|h| named(free, &h)),
@@ -204,6 +241,7 @@ pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError
         processed: paving.processed,
         resolution,
         seconds: paving.seconds,
+        certificate: certificate(d),
         boxes: paving.boxes.iter().map(box_out).collect(),
     };
     super::output::json(&out)
@@ -212,16 +250,17 @@ pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError
 pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
     let done = compute(a, true)?;
     let d = &done;
-    let (kind, start) = (d.kind, &d.start);
+    let start = &d.start;
     let paving = &d.paving;
     let prob_rows = d.rows;
     let free = d.free.clone();
     let [nf, ni, nu] = paving.counts();
     let [sf, si, su] = paving.shares(start);
-    let verdict = verdict(paving, &free);
+    let verdict = verdict(paving, d);
+    let resolution = resolution(a);
     let hull = paving.hull();
     let bytes = match a.format {
-        IdentifyFormat::Json => json_report(d, a.resolution)?,
+        IdentifyFormat::Json => json_report(d, resolution)?,
         IdentifyFormat::Csv => {
             let mut head = vec!["status".to_string()];
             for n in &free {
@@ -241,12 +280,21 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
         }
         IdentifyFormat::Table => {
             let mut s = format!(
-                "model {}: {} data rows, free {} (resolution 1/{})\n{verdict}\n\n",
-                kind.name(),
+                "model {}: {} data rows, free {} (resolution 1/{resolution})\n{verdict}\n\n",
+                d.model,
                 prob_rows,
-                free.join(", "),
-                a.resolution
+                if free.is_empty() {
+                    "none".into()
+                } else {
+                    free.join(", ")
+                },
             );
+            for c in certificate(d) {
+                let _ = writeln!(s, "  {c}");
+            }
+            if d.refuted.is_some() && !certificate(d).is_empty() {
+                s.push('\n');
+            }
             let rows: Vec<Vec<String>> = [
                 ("feasible", nf, sf),
                 ("infeasible", ni, si),
@@ -325,6 +373,26 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
             ));
             Ok(EXIT_FAILED)
         }
+    }
+}
+
+/// The effective `--resolution` (its default depends on the model).
+pub(crate) fn resolution(a: &IdentifyArgs) -> u64 {
+    a.resolution.unwrap_or(if a.model.law().is_some() {
+        super::compare::LAW_RESOLUTION as u64
+    } else {
+        128
+    })
+}
+
+/// A classical law's certificate of an empty F (empty otherwise).
+fn certificate(d: &Done) -> Vec<String> {
+    match (&d.refuted, d.paving.hull()) {
+        (Some((r, data, _)), None) => {
+            let law = bwcl::fit::laws::Law::from_key(d.model).expect("a law's name");
+            super::compare::certificate(law, r, data)
+        }
+        _ => vec![],
     }
 }
 

@@ -7,6 +7,7 @@ pub(crate) mod args;
 mod band;
 pub(crate) mod classical;
 pub(crate) mod commands;
+pub(crate) mod compare;
 pub(crate) mod fit;
 pub(crate) mod identify;
 pub(crate) mod input;

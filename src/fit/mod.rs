@@ -15,6 +15,9 @@
 //! - [`nelder_mead`]: the seeded multi-start Nelder–Mead minimization of J (argmin);
 //! - [`weights`]: the residuals' errors (a `sigma` column, `--error`) and contact durations;
 //! - [`minima`]: the end points clustered into distinct minima (hill–valley), with Δχ²;
+//! - [`laws`]: the classical collision laws as one-parameter families over the speeds, and their
+//!   fit (issue #33);
+//! - [`criteria`]: AIC, AICc and BIC, to compare models fitted to the same data;
 //! - [`chi2`]: the χ² quantile (regularized incomplete gamma function);
 //! - [`uncertainty`]: Jacobian, covariance, standard errors, correlations and SVD at a fit;
 //! - [`profile`]: J profiled along one parameter with the others re-optimized, and its
@@ -22,7 +25,9 @@
 
 pub mod chi2;
 pub mod cost;
+pub mod criteria;
 pub mod data;
+pub mod laws;
 pub mod minima;
 pub mod nelder_mead;
 pub mod profile;

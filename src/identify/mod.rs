@@ -18,6 +18,7 @@
 
 pub mod form;
 pub mod guide;
+pub mod laws;
 pub mod paving;
 pub mod problem;
 pub mod setup;

@@ -3,18 +3,18 @@
 
 use super::cli::args::Command;
 use super::cli::classical::report;
-use super::run::{compute, parse, py_error};
-use pyo3::exceptions::PyValueError;
+use super::run::json_command;
 use pyo3::prelude::*;
 
 /// The report of `bwcl classical <argv>` as its JSON text (see `bwcl.classical`).
 #[pyfunction]
 #[pyo3(signature = (argv, threads=None))]
 pub fn classical(py: Python<'_>, argv: Vec<String>, threads: Option<usize>) -> PyResult<String> {
-    let cli = parse(&argv)?;
-    let Command::Classical(a) = cli.command else {
-        return Err(PyValueError::new_err("classical: not a classical command"));
+    let pick = |c| match c {
+        Command::Classical(a) => Some(a),
+        _ => None,
     };
-    let (bytes, _) = compute(py, threads, || report(&a))?.map_err(py_error)?;
-    String::from_utf8(bytes).map_err(|e| PyValueError::new_err(format!("classical: {e}")))
+    json_command(py, &argv, threads, "classical", pick, |a| {
+        report(a).map(|(bytes, _)| bytes)
+    })
 }

@@ -107,7 +107,7 @@ pub fn fit<'py>(
         return Err(PyValueError::new_err("not a fit command"));
     };
     let a: FitArgs = a;
-    let kind = ModelKind::from(a.model);
+    let kind = super::cli::fit::bouc_wen(a.model).map_err(py_error)?;
     let data = data_of(&a.data, v0, e)?;
     let mut opts = fit_options(&a).map_err(py_error)?;
     opts.weights = Some(search_weights(&data, &a.search).map_err(py_error)?);

@@ -25,6 +25,7 @@ mod cli;
 
 mod arrays;
 mod classical;
+mod compare;
 mod cor;
 mod digits;
 mod fit;
@@ -48,6 +49,7 @@ fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit::profile, m)?)?;
     m.add_function(wrap_pyfunction!(laws::laws, m)?)?;
     m.add_function(wrap_pyfunction!(classical::classical, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;

@@ -1,7 +1,7 @@
 //! The way of every call: the CLI's parser and checks, errors as Python exceptions, the
 //! computation with the GIL released on a rayon pool, panics caught.
 
-use super::cli::args::Cli;
+use super::cli::args::{Cli, Command};
 use super::cli::{CliError, error_line, usage_message};
 use clap::Parser;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -19,6 +19,28 @@ pub fn py_error(e: CliError) -> PyErr {
         CliError::Input(m) => PyValueError::new_err(error_line(&m)),
         CliError::Failed(m) => PyRuntimeError::new_err(error_line(&m)),
     }
+}
+
+/// A JSON-report command of the CLI (`bwcl <argv> --format json` as the Python layer builds
+/// it): parsed, checked to be the command `name` (`pick`), computed with the GIL released
+/// (`threads` as in [`compute`]), its bytes as text.
+pub fn json_command<A, P, R>(
+    py: Python<'_>,
+    argv: &[String],
+    threads: Option<usize>,
+    name: &str,
+    pick: P,
+    report: R,
+) -> PyResult<String>
+where
+    A: Send + Sync,
+    P: FnOnce(Command) -> Option<A>,
+    R: FnOnce(&A) -> Result<Vec<u8>, CliError> + Send,
+{
+    let a = pick(parse(argv)?.command)
+        .ok_or_else(|| PyValueError::new_err(format!("{name}: not a {name} command")))?;
+    let bytes = compute(py, threads, || report(&a))?.map_err(py_error)?;
+    String::from_utf8(bytes).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 
 /// Parses the CLI's arguments (without the program name), as `bwcl` would.

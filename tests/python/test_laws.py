@@ -96,3 +96,66 @@ def test_classical_bad_input():
         bwcl.classical("coulomb")
     with pytest.raises(TypeError):
         bwcl.classical("hertz", n=b"1.5")
+
+
+def _scipy_cor(rhs, force, y0):
+    """e and T_s by SciPy's solve_ivp (DOP853, rtol 1e-12): the first time after the start
+    where F ≤ 0 with V ≥ 0 (the crate's separation rule), located by an event on F."""
+    from scipy.integrate import solve_ivp
+
+    def sep(t, y):
+        return force(y) if t > 1e-9 else 1.0
+    sep.terminal = True
+    sep.direction = -1
+    r = solve_ivp(rhs, (0.0, 50.0), y0, method="DOP853", rtol=1e-12, atol=1e-14, events=sep)
+    assert r.t_events[0].size == 1
+    y = r.y_events[0][0]
+    return y[-1], r.t_events[0][0]
+
+
+def _hc(sigma, n):
+    f = lambda y: -abs(y[0]) ** (n - 1) * y[0] - sigma * abs(y[0]) ** n * y[1]  # noqa: E731
+    # separation at X = 0 (F = 0 there): the event on X crossing 0 from below
+    return (lambda t, y: [y[1], f(y)]), (lambda y: -y[0]), [0.0, -1.0]
+
+
+def test_each_law_agrees_with_scipy_solve_ivp():
+    cases = {
+        ("hooke", ()): _hc(0.0, 1.0),
+        ("hertz", (("n", 1.5),)): _hc(0.0, 1.5),
+        ("hunt-crossley", (("sigma", 0.4), ("n", 1.5))): _hc(0.4, 1.5),
+        ("hunt-crossley", (("sigma", 1.5), ("n", 1.2))): _hc(1.5, 1.2),
+    }
+    z = 0.3
+    cases[("kelvin-voigt", (("zeta", z),))] = (
+        lambda t, y: [y[1], -y[0] - 2 * z * y[1]], lambda y: -y[0] - 2 * z * y[1], [0.0, -1.0])
+    c = 2.0
+    cases[("linear-maxwell", (("c", c),))] = (
+        lambda t, y: [y[2], (y[0] - y[1]) / c, -(y[0] - y[1])], lambda y: -(y[0] - y[1]),
+        [0.0, 0.0, -1.0])
+    for (law, params), (rhs, force, y0) in cases.items():
+        e, ts = _scipy_cor(rhs, force, y0)
+        r = bwcl.classical(law, **dict(params))
+        assert abs(r.e - e) < 1e-8 and abs(r.ts - ts) < 1e-8, (law, params, r.e, e, r.ts, ts)
+
+
+def test_compare_and_identify_take_the_laws(tmp_path):
+    """Hunt–Crossley data (σ_b = 0.37): compare ranks it first and its proved feasible set
+    holds 0.37; constant-CoR laws are refuted with a certificate; identify takes a law."""
+    v0 = np.linspace(0.2, 4.0, 8)
+    e = np.array([bwcl.classical("hunt-crossley", sigma=0.37 * float(v), n=1.5).e for v in v0])
+    rows = bwcl.compare(v0=v0, e=e, models=["hunt-crossley", "kelvin-voigt", "hertz"],
+                        error=0.01)
+    assert [r["model"] for r in rows][0] == "hunt-crossley"
+    assert rows[0]["J"] < 1e-8
+    kv = next(r for r in rows if r["model"] == "kelvin-voigt")
+    assert kv["feasible"].startswith("empty") and kv["certificate"] and kv["refuted_everywhere"]
+    r = bwcl.identify("hunt-crossley", v0=v0, e=e, error=0.01)
+    (lo, hi), = r.hull.values()
+    assert lo < 0.37 < hi and not r.empty
+    r = bwcl.identify("kelvin-voigt", v0=v0, e=e, error=0.01)
+    assert r.empty and r.certificate
+    with pytest.raises(ValueError, match="models"):
+        bwcl.compare(v0=v0, e=e, models="shc,coulomb")
+    with pytest.raises(ValueError, match="no-tc|fix|Bouc"):
+        bwcl.identify("hunt-crossley", v0=v0, e=e, error=0.01, fix={"kappa": 0.5})
