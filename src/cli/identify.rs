@@ -105,15 +105,13 @@ fn verdict(p: &Paving, d: &Done) -> String {
         };
     }
     match p.hull() {
+        None if matches!(d.refuted, Some((_, _, true))) => "proved: no value of the parameter \
+             is consistent with the data, in the box or beyond it (e is monotone in it): F is \
+             empty, the law is falsified by the data at these errors"
+            .into(),
         None => format!(
-            "proved: no {what} {} is consistent with the data (F is empty: the model is \
-             falsified by the data at these errors)",
-            if matches!(d.refuted, Some((_, _, true))) {
-                "at all (the box's refutations extend to the whole admissible set by the law's \
-                 monotone e)"
-            } else {
-                "in the box"
-            }
+            "proved: no {what} in the box is consistent with the data (F is empty: the model is \
+             falsified by the data at these errors)"
         ),
         Some(h) => {
             let parts: Vec<String> = free

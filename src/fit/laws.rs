@@ -133,12 +133,28 @@ impl Law {
         }
     }
 
+    /// The largest θ accepted in bounds: σ_b ≤ 10⁴ (e ≈ 1/(σ_b v0) ≤ 1e−3 for speeds ≥ 0.1),
+    /// ζ ≤ 10⁴ (e ≈ 1/(4ζ²)), c̃ ≤ 10¹² (1 − e ≈ π/(2c̃)).
+    pub fn max_parameter(self) -> f64 {
+        match self {
+            Law::LinearMaxwell => 1e12,
+            _ => 1e4,
+        }
+    }
+
     /// Checks bounds [lo, hi] of θ: ordered, finite, admissible; the refusal names them.
     pub fn check_bounds(self, lo: f64, hi: f64) -> Result<(), String> {
         let name = self.parameter().unwrap_or("the parameter");
         let (f, open) = self.floor();
         if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
             return Err(format!("{name}: {lo}..{hi} is not a finite range lo ≤ hi"));
+        }
+        let cap = self.max_parameter();
+        if hi > cap {
+            return Err(format!(
+                "{name} = {hi} is beyond {cap:e}, the largest the engines are asked to take (e is \
+                 within 1e-3 of its limit there)"
+            ));
         }
         if !self.admits(lo) {
             let why = match self {

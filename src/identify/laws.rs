@@ -13,7 +13,9 @@
 //! interval on which every row is proved inside its inner target is feasible; the rest is split
 //! — at the geometric mean of the distances to the admissible set's floor while they differ by
 //! more than 4× (the parameters span decades), else at the midpoint — until its width is below
-//! 1/N of its distance to the floor (or 1e−12 of the starting width), then undecided.
+//! 1/N of its distance to the floor (or 1e−12 of the starting width), then undecided — or below
+//! 1/16 of it where the engine failed for a row (at large damping the separation becomes
+//! undecidable for the engine, and splitting does not cure it).
 //!
 //! An empty F is a certificate that no law of the family fits the data at those errors; the
 //! refuting rows are kept per infeasible interval ([`Refutation`]), so the certificate names
@@ -76,6 +78,9 @@ impl LawProblem {
         Ok(Self { law, rows })
     }
 }
+
+/// The resolution of intervals on which the engine failed for some row (module doc).
+pub const FAILED_RESOLUTION: f64 = 16.0;
 
 /// Settings of a law's paving.
 #[derive(Clone, Debug)]
@@ -250,9 +255,18 @@ pub fn pave_law(
             continue;
         }
         processed += 1;
-        let v = verdicts(&ends.over(a, b));
+        let es = ends.over(a, b);
+        let v = verdicts(&es);
         let (status, by) = decide(&v, &p.rows);
-        let fine = b - a <= (b - floor) / o.resolution || b - a <= min_abs;
+        // where the engine fails (very large damping: the separation becomes undecidable) the
+        // failure persists under splitting: such intervals stop at 1/16 of their distance to
+        // the floor, so the work stays bounded
+        let res = if es.iter().any(Option::is_none) {
+            FAILED_RESOLUTION.min(o.resolution)
+        } else {
+            o.resolution
+        };
+        let fine = b - a <= (b - floor) / res || b - a <= min_abs;
         if status != Status::Undecided || fine {
             leaves.push((a, b, status, by));
         } else {
