@@ -336,6 +336,44 @@ fn fit_and_compare_rank_the_generating_law_first() {
 }
 
 #[test]
+fn compare_states_what_it_proved() {
+    // a sigma column weights the fits, but the feasible sets are at ±E for every row: with
+    // E = 0.5 the constant-CoR law fits both rows (a review found the column used instead)
+    let dir = std::env::temp_dir();
+    let sig = dir.join(format!("bwcl-compare-{}-sigma.csv", std::process::id()));
+    std::fs::write(&sig, "v0,e,sigma\n1,0.9,0.001\n2,0.8,0.001\n").unwrap();
+    let j = json(&[
+        "compare",
+        "--data",
+        sig.to_str().unwrap(),
+        "--models",
+        "kelvin-voigt",
+        "--error",
+        "0.5",
+        "--format",
+        "json",
+    ]);
+    let f = j["rows"][0]["feasible"].as_str().unwrap();
+    assert!(f.starts_with("zeta ∈ ["), "{f}");
+    // F reaching the searched box's end is not printed as all of F
+    let low = dir.join(format!("bwcl-compare-{}-low.csv", std::process::id()));
+    std::fs::write(&low, "v0,e\n1,0.003\n2,0.004\n").unwrap();
+    let j = json(&[
+        "compare",
+        "--data",
+        low.to_str().unwrap(),
+        "--models",
+        "kelvin-voigt",
+        "--error",
+        "0.01",
+        "--format",
+        "json",
+    ]);
+    let f = j["rows"][0]["feasible"].as_str().unwrap();
+    assert!(f.contains("may reach past the searched 0..10"), "{f}");
+}
+
+#[test]
 fn bad_input_gets_one_line_and_exit_2() {
     let path = write("bad", &hc_data());
     let p = path.to_str().unwrap();

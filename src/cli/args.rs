@@ -944,8 +944,9 @@ pub struct CompareArgs {
     /// linear-maxwell, hertz, hooke].
     #[arg(long, value_name = "NAMES", allow_hyphen_values = true)]
     pub models: Option<String>,
-    /// Every e known to within ±E (E > 0): each classical law's feasible set is proved (empty:
-    /// a certificate that no law of the family fits the data to ±E).
+    /// Every e known to within ±E (E > 0; for every row: a sigma column weights the fits only):
+    /// each classical law's feasible set is proved (empty: a certificate that no law of the
+    /// family fits the data to ±E).
     #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = decimal)]
     pub error: Option<f64>,
     /// Random starts of the Bouc–Wen fits, 0 ≤ N ≤ 256 (as `fit`).

@@ -428,14 +428,18 @@ struct CompareOut {
     rows: Vec<CompareRow>,
 }
 
-/// The feasible set of a law at ±E, in words, with its certificate.
+/// The feasible set of a law at ±E for every row (a `sigma` column, which weights the fits, is
+/// not used here: the text says ±E), in words, with its certificate and whether it covers the
+/// whole admissible set.
 fn feasible(
     law: Law,
     data: &CorData,
     e: f64,
     time_limit: Option<f64>,
 ) -> (String, Vec<String>, bool) {
-    let prob = match LawProblem::new(law, data, Some(e), true) {
+    let mut at_e = data.clone();
+    at_e.sigma = None;
+    let prob = match LawProblem::new(law, &at_e, Some(e), true) {
         Ok(p) => p,
         Err(m) => return (format!("not run: {m}"), vec![], false),
     };
@@ -477,9 +481,18 @@ fn feasible(
             } else {
                 "none proved feasible"
             };
+            // an end of F at the box's end may continue past it (unless it is the floor)
+            let (f, open_floor) = law.floor();
+            let past_lo = h[0].0 <= lo && (lo > f || open_floor);
+            let past_hi = h[0].1 >= hi;
+            let beyond = if past_lo || past_hi {
+                format!("; F may reach past the searched {}..{}", num(lo), num(hi))
+            } else {
+                String::new()
+            };
             (
                 format!(
-                    "{n} ∈ [{}, {}] ({fh}){open}",
+                    "{n} ∈ [{}, {}] ({fh}{beyond}){open}",
                     outward(h[0].0, Rounding::Down),
                     outward(h[0].1, Rounding::Up)
                 ),

@@ -138,6 +138,8 @@ enum RowVerdict {
 
 fn judge(e: Option<Interval>, t: &Target) -> RowVerdict {
     match e {
+        // an empty enclosure proves nothing (never returned by the engine; kept out anyway)
+        Some(e) if e.is_empty() => RowVerdict::Open,
         Some(e) if e.disjoint(t.outer()) => RowVerdict::Outside(e.sup() < t.outer().inf()),
         Some(e) if t.inner().is_some_and(|i| e.subset(i)) => RowVerdict::Inside,
         _ => RowVerdict::Open,
