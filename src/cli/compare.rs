@@ -319,7 +319,7 @@ pub(crate) fn identify(a: &IdentifyArgs, law: Law, bar: bool) -> Result<Done, Cl
     };
     let prob = LawProblem::new(law, &data, a.error, a.no_tc).map_err(CliError::Input)?;
     let mut opts = LawOptions {
-        resolution: a.resolution.map_or(LAW_RESOLUTION, |r| r as f64),
+        resolution: super::identify::resolution(a) as f64,
         taylor: Default::default(),
         max_boxes: a.max_boxes as usize,
     };

@@ -174,7 +174,7 @@ pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
         no_tc: a.no_tc,
     };
     let (prob, start) = problem(kind, &data, &spec).map_err(CliError::Input)?;
-    let mut opts = Options::new(&start, a.resolution.unwrap_or(128) as f64);
+    let mut opts = Options::new(&start, resolution(a) as f64);
     opts.max_boxes = a.max_boxes as usize;
     opts.taylor.deadline = Some(super::input::deadline(a.time_limit));
     opts.slope_taylor.deadline = opts.taylor.deadline;

@@ -25,7 +25,7 @@
 //! rigorous run against every row (a leaf with no coordinates).
 
 use super::paving::{Leaf, Paving, Progress, Status};
-use super::problem::{Row, Target, around};
+use super::problem::{Row, Target, check_error};
 use crate::engines::taylor::TaylorOptions;
 use crate::fit::data::CorData;
 use crate::fit::laws::{Law, Monotone};
@@ -50,16 +50,7 @@ impl LawProblem {
         error: Option<f64>,
         ignore_tc: bool,
     ) -> Result<Self, String> {
-        if let Some(e) = error
-            && !(e.is_finite() && e > 0.0)
-        {
-            return Err(format!("--error {e} must be a finite number > 0"));
-        }
-        if error.is_none() && data.sigma.is_none() {
-            return Err(
-                "the error of e is needed: --error E, or a column sigma in the data".into(),
-            );
-        }
+        check_error(data, error)?;
         if data.tc.is_some() && !ignore_tc {
             return Err(format!(
                 "the data have a column tc: the law {} is identified from CoRs alone \
@@ -67,14 +58,7 @@ impl LawProblem {
                 law.key()
             ));
         }
-        let rows = (0..data.len())
-            .map(|i| Row {
-                index: i,
-                v0: around(data.v0[i]),
-                e: Target::new(data.e[i], data.e_error(i, error.unwrap_or(f64::NAN))),
-                tc: None,
-            })
-            .collect();
+        let rows = (0..data.len()).map(|i| Row::cor(data, i, error)).collect();
         Ok(Self { law, rows })
     }
 }

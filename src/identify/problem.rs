@@ -63,6 +63,32 @@ pub struct Row {
     pub tc: Option<Target>,
 }
 
+impl Row {
+    /// Row i of `data` with its CoR target e_i ± E_i (E_i its `sigma`, else `error`; checked by
+    /// [`check_error`]) and no duration.
+    pub fn cor(data: &CorData, i: usize, error: Option<f64>) -> Self {
+        Self {
+            index: i,
+            v0: around(data.v0[i]),
+            e: Target::new(data.e[i], data.e_error(i, error.unwrap_or(f64::NAN))),
+            tc: None,
+        }
+    }
+}
+
+/// `--error`: finite and > 0, and needed unless the data have a `sigma` column.
+pub fn check_error(data: &CorData, error: Option<f64>) -> Result<(), String> {
+    if let Some(e) = error
+        && !(e.is_finite() && e > 0.0)
+    {
+        return Err(format!("--error {e} must be a finite number > 0"));
+    }
+    if error.is_none() && data.sigma.is_none() {
+        return Err("the error of e is needed: --error E, or a column sigma in the data".into());
+    }
+    Ok(())
+}
+
 /// A set-membership problem: the model, which parameters are free (the box) and which fixed
 /// (their enclosures), and the constraints.
 #[derive(Clone, Debug)]
@@ -90,17 +116,11 @@ impl Problem {
         tc_error: Option<f64>,
         use_tc: bool,
     ) -> Result<Self, String> {
-        for (name, e) in [("--error", error), ("--tc-error", tc_error)] {
-            if let Some(e) = e
-                && !(e.is_finite() && e > 0.0)
-            {
-                return Err(format!("{name} {e} must be a finite number > 0"));
-            }
-        }
-        if error.is_none() && data.sigma.is_none() {
-            return Err(
-                "the error of e is needed: --error E, or a column sigma in the data".into(),
-            );
+        check_error(data, error)?;
+        if let Some(e) = tc_error
+            && !(e.is_finite() && e > 0.0)
+        {
+            return Err(format!("--tc-error {e} must be a finite number > 0"));
         }
         let use_tc = use_tc && data.tc.is_some();
         if use_tc && tc_error.is_none() && data.tc_sigma.is_none() {
@@ -117,13 +137,11 @@ impl Problem {
         }
         let rows = (0..data.len())
             .map(|i| Row {
-                index: i,
-                v0: around(data.v0[i]),
-                e: Target::new(data.e[i], data.e_error(i, error.unwrap_or(f64::NAN))),
                 tc: use_tc.then(|| {
                     let tc = data.tc.as_ref().expect("a tc column")[i];
                     Target::new(tc, data.tc_error(i, tc_error.unwrap_or(f64::NAN)))
                 }),
+                ..Row::cor(data, i, error)
             })
             .collect();
         Ok(Self {
