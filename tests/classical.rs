@@ -21,7 +21,7 @@ use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
 use rug::float::Constant;
-use rug::ops::Pow;
+
 use rug::{Float, Rational};
 
 mod common;
@@ -32,14 +32,7 @@ fn f(x: f64) -> Float {
     Float::with_val(BITS, x)
 }
 
-/// [x − 10⁻⁵⁰, x + 10⁻⁵⁰] as rationals (x computed at 200 bits: error ≈ 10⁻⁵⁸).
-fn bracket(x: &Float) -> (Rational, Rational) {
-    let eps = Float::with_val(BITS, Float::parse("1e-50").unwrap());
-    (
-        Float::with_val(BITS, x - &eps).to_rational().unwrap(),
-        Float::with_val(BITS, x + &eps).to_rational().unwrap(),
-    )
-}
+use common::around as bracket;
 
 /// The widest enclosure of e accepted (issue #33's floor for the proved CoR).
 const E_WIDTH: f64 = 1e-12;
@@ -82,16 +75,7 @@ fn one() -> (Rational, Rational) {
 
 /// Hertz's contact time for the exponent n (a double, exact as given).
 fn hertz_ts(n: f64) -> Float {
-    let n1 = f(n) + 1u32;
-    let xm = Float::with_val(
-        BITS,
-        (n1.clone() / 2u32).pow(Float::with_val(BITS, 1u32 / &n1)),
-    );
-    let a = Float::with_val(BITS, 1u32 / &n1);
-    let half = f(0.5);
-    let beta = Float::with_val(BITS, a.clone().gamma() * half.clone().gamma())
-        / Float::with_val(BITS, a + half).gamma();
-    Float::with_val(BITS, xm * 2u32 * beta / n1)
+    common::hertz_ts(&f(n))
 }
 
 #[test]
@@ -139,13 +123,7 @@ fn hunt_crossley_holds_its_restitution_law() {
 #[test]
 fn kelvin_voigt_separates_where_its_force_vanishes() {
     for zeta in [0.05, 0.3, 0.7] {
-        let z = f(zeta);
-        let w = Float::with_val(BITS, 1u32 - Float::with_val(BITS, &z * &z)).sqrt();
-        let phi = Float::with_val(BITS, Float::with_val(BITS, &z * &w) * 2u32).atan2(
-            &Float::with_val(BITS, 1u32 - Float::with_val(BITS, &z * &z) * 2u32),
-        );
-        let ts = Float::with_val(BITS, Float::with_val(BITS, Constant::Pi) - phi) / &w;
-        let e = Float::with_val(BITS, -Float::with_val(BITS, &z * &ts)).exp();
+        let (ts, e) = common::kelvin_voigt_closed(&f(zeta));
         let (pe, pts) =
             proved(&KelvinVoigt::new(Interval::try_from((zeta, zeta)).unwrap()).unwrap());
         holds(pe, &bracket(&e), "Kelvin–Voigt e");
@@ -186,10 +164,7 @@ fn overdamped_and_critical_kelvin_voigt_hold_their_closed_form() {
 #[test]
 fn linear_maxwell_separates_when_its_spring_relaxes() {
     for c in [0.75, 2.0, 10.0] {
-        let beta = Float::with_val(BITS, 1u32 / f(2.0 * c));
-        let w = Float::with_val(BITS, 1u32 - Float::with_val(BITS, &beta * &beta)).sqrt();
-        let ts = Float::with_val(BITS, Constant::Pi) / &w;
-        let e = Float::with_val(BITS, -Float::with_val(BITS, &beta * &ts)).exp();
+        let (ts, e) = common::linear_maxwell_closed(&f(c));
         let m = LinearMaxwell::new(Interval::try_from((c, c)).unwrap()).unwrap();
         let r = rigorous_impact(&m, &TaylorOptions::default()).expect("proved");
         holds(r.e, &bracket(&e), "linear Maxwell e");

@@ -19,6 +19,25 @@ TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
 # (name, file, [(exact text, replacement)], what it removes[, the cargo test arguments that
 # must see it: TESTS when not given])
 GUARDS = [
+    # issue #33: a classical law's physical parameters to its nondimensional model
+    # (models/classical.rs), checked against the closed forms in seconds (tests/law_cor.rs)
+    ("law-sigma-physical", "src/models/classical.rs",
+     [("self.d.clone() * v0.clone() / self.k.clone()", "self.d.clone() * v0.clone()")],
+     "Hunt–Crossley σ = χ·v0/k: the division by k dropped",
+     ["--test", "law_cor", "one_law"]),
+    ("law-zeta-physical", "src/models/classical.rs",
+     [("self.d.clone() / (R::from_int(2) * (self.m.clone() * self.k.clone()).sqrt())",
+       "self.d.clone() / (self.m.clone() * self.k.clone()).sqrt()")],
+     "Kelvin–Voigt ζ = c/(2√(mk)): the factor 2 dropped",
+     ["--test", "law_cor", "closed_forms"]),
+    ("law-time-scale", "src/models/classical.rs",
+     [(".pow(&(one.clone() / (self.n.clone() + one)));", ".pow(&(one.clone() / self.n.clone()));")],
+     "the length scale L = (m v0²/k)^(1/(n+1)) (the time scale T_c = L/v0 with it)",
+     ["--test", "law_cor", "closed_forms"]),
+    ("law-positive-mk", "src/models/classical.rs",
+     [('"m" | "k" if v[0] <= zero => fail("> 0"),', '"m" | "k" if v[0] < zero => fail("> 0"),')],
+     "m, k > 0 checked as written (0 refused)",
+     ["--test", "law_cor", "bad_law_input"]),
     # issue #33: the Hunt–Crossley CoR proved from its closed form (observables/restitution.rs)
     ("laws-sign", "src/observables/restitution.rs",
      [("    } else if h.lo() > 0.0 {\n        1", "    } else if h.hi() > 0.0 {\n        1")],

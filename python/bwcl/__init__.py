@@ -162,14 +162,31 @@ def _physical(p: Any, ranges: bool) -> str:
     return ",".join(f"{k}={_token(v, 'physical', ranges)}" for k, v in p.items())
 
 
+def _named(p: Any, what: str, ranges: bool) -> str:
+    """A classical law's parameters by name: a mapping {'sigma': …, 'n': …} or the CLI's
+    text 'sigma=…,n=…' ('' or {} for Hooke's)."""
+    if isinstance(p, str):
+        return p
+    if not hasattr(p, "items"):
+        raise TypeError(
+            f"{what}: a classical law's parameters go by name, as a mapping "
+            f"{{'sigma': …, 'n': …}} or the CLI's text 'sigma=…,n=…'; got {type(p).__name__}"
+        )
+    return ",".join(f"{k}={_token(v, what, ranges)}" for k, v in p.items())
+
+
 def _source(model: Any, base: Any, nd: Any, physical: Any, ranges: bool) -> list:
     if not isinstance(model, str):
-        raise TypeError(f"model: expected 'shc' or 'maxwell', got {type(model).__name__}")
+        raise TypeError(
+            f"model: expected 'shc', 'maxwell' or a classical law ({', '.join(LAWS)}), "
+            f"got {type(model).__name__}"
+        )
     argv = [f"--model={model}"]
+    params = _named if model in LAWS else _six
     if base is not None:
-        argv.append("--base=" + _six(base, "base", ranges))
+        argv.append("--base=" + params(base, "base", ranges))
     if nd is not None:
-        argv.append("--nd=" + _six(nd, "nd", ranges))
+        argv.append("--nd=" + params(nd, "nd", ranges))
     if physical is not None:
         argv.append("--physical=" + _physical(physical, ranges))
     return argv
@@ -250,7 +267,8 @@ class CorResult:
     e : the CoR e = V(T_s) (eq:main_cor); 0 without separation, NaN where it failed.
     separated : whether F_P ≤ 0 and V ≥ 0 was reached before the horizon.
     nfev : right-hand-side evaluations; ``steps``: accepted DOP853 steps.
-    params : (n, 6) the nondimensional set P = (B, Γ, κ, σ, n, p) of each case.
+    params : (n, 6) the nondimensional set P = (B, Γ, κ, σ, n, p) of each case; for a
+        classical law a dict of (n,) arrays by name (sigma, n, zeta or c, nondimensional).
     error : per case, None or why the case could not be integrated.
     ts_seconds, t_c : with ``physical``: T_s·T_c and the time scale T_c [s].
     seconds : wall time of the computation (the cases only, as the CLI's ``--timing``).
@@ -263,7 +281,7 @@ class CorResult:
     separated: np.ndarray
     nfev: np.ndarray
     steps: np.ndarray
-    params: np.ndarray
+    params: Any
     error: Tuple[Optional[str], ...]
     ts_seconds: Optional[np.ndarray] = None
     t_c: Optional[np.ndarray] = None
@@ -312,7 +330,8 @@ class RigorousResult:
     ts_text, e_text, v0_text : per case (lo, hi) decimals rounded outward, or None.
     width_ts_text, width_e_text : the widths as decimals rounded up, or None.
     ts_seconds : with ``physical``: (n, 2) an enclosure of T_s·T_c [s].
-    params : (n, 6, 2) the enclosures of P = (B, Γ, κ, σ, n, p) of each case.
+    params : (n, 6, 2) the enclosures of P = (B, Γ, κ, σ, n, p) of each case; for a classical
+        law a dict of (n, 2) arrays by name.
     bits : per case the precision of the run that proved it (or was tried last): 53 for the
         f64-interval engine, 128/192/256 where the precision fallback decided it.
     fallback : per case None, or the precision fallback's runs as
@@ -479,10 +498,16 @@ def cor(
 
     Parameters
     ----------
-    model : "shc" (NDBWSHCCM, eq:BWSHCCM_nd) or "maxwell" (NDBWMCM, eq:BWMCM_nd).
-    base : P* = (B_b, Γ_b, κ, σ_b, n, p), mapped to each v0 by 𝓟(P*, v0).
-    nd : P = (B, Γ, κ, σ, n, p), one case (no v0).
-    physical : SI parameters {m, k, c, n, p, alpha, beta, gamma, A} (eq:BWSHCCM, eq:BWMCM).
+    model : "shc" (NDBWSHCCM, eq:BWSHCCM_nd), "maxwell" (NDBWMCM, eq:BWMCM_nd), or a classical
+        law: "hooke", "hertz", "hunt-crossley", "kelvin-voigt", "linear-maxwell".
+    base : P* = (B_b, Γ_b, κ, σ_b, n, p), mapped to each v0 by 𝓟(P*, v0). For a law its
+        family by name: {"sigma_b": …, "n": …} (hunt-crossley, σ = σ_b·v0), {"n": …}
+        (hertz), {"zeta": …} (kelvin-voigt), {"c": …} (linear-maxwell), {} (hooke).
+    nd : P = (B, Γ, κ, σ, n, p), one case (no v0). For a law by name: {"sigma": …, "n": …},
+        {"n": …}, {"zeta": …}, {"c": …} (c̃ = c/√(mk)), {}; n is 3/2 when not given.
+    physical : SI parameters {m, k, c, n, p, alpha, beta, gamma, A} (eq:BWSHCCM, eq:BWMCM);
+        for a law {m, k} and hertz {n}, hunt-crossley {chi, n}, kelvin-voigt and
+        linear-maxwell {c} (``bwcl cor --help``, CLASSICAL LAWS).
     v0 : impact speed(s) v0 > 0 [m/s]: a number, a 1-D array, or the CLI's list "0.5,1,2".
     rtol, atol, max_step : DOP853 settings, the paper's by default (its SciPy call).
     horizon : nondimensional time after which "no separation" is reported (0 < T ≤ 1e6).
@@ -533,11 +558,11 @@ def cor_rigorous(
     v0: Any = None,
     horizon: float = 100.0,
     order: int = 16,
-    pieces: int = 256,
+    pieces: Optional[int] = None,
     threads: Optional[int] = None,
     raise_on_failure: bool = False,
-    fallback_bits: int = 256,
-    fallback_seconds: float = 60.0,
+    fallback_bits: Optional[int] = None,
+    fallback_seconds: Optional[float] = None,
     digits: Optional[int] = None,
     time_limit: float = 300.0,
 ) -> RigorousResult:
@@ -560,12 +585,15 @@ def cor_rigorous(
     model, base, nd, physical, v0 : as :func:`cor`.
     horizon : nondimensional time within which separation must be proved.
     order : Taylor order K of the engine, 2 ≤ K ≤ 40.
-    pieces : ceiling of the adaptive split of a range input, 1 ≤ N ≤ 1024.
+    pieces : ceiling of the adaptive split of a range input, 1 ≤ N ≤ 1024 (default 256; a
+        classical law's range is proved whole).
     threads : the size of this call's thread pool.
     fallback_bits : a point case that double precision cannot decide ("grazing or
         undecidable", "grew too wide", "cannot cross") is tried again on MPFR intervals at
-        128, 192, then 256 bits, up to this many (0, 128, 192 or 256; 0 turns it off).
-    fallback_seconds : wall-clock budget of each precision of the fallback, 0 < S ≤ 3600.
+        128, 192, then 256 bits, up to this many (0, 128, 192 or 256, default 256; 0 turns
+        it off; the Bouc–Wen models only).
+    fallback_seconds : wall-clock budget of each precision of the fallback, 0 < S ≤ 3600
+        (default 60).
     digits : prove T_s and e to this many significant digits, 1 ≤ D ≤ 100, on intervals over
         MPFR floats (``bwcl cor --rigorous --digits D``: 30 digits take ≈ 1–2 s a case, 60
         ≈ 5–9 s); ``ts_text`` and ``e_text`` then carry every digit the width allows, rounded
@@ -589,11 +617,11 @@ def cor_rigorous(
     """
     argv = ["cor"] + _source(model, base, nd, physical, True)
     argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
-    argv += [f"--order={_num(order, 'order')}", f"--pieces={_num(pieces, 'pieces')}"]
-    argv += [
-        f"--fallback-bits={_num(fallback_bits, 'fallback_bits')}",
-        f"--fallback-seconds={_num(fallback_seconds, 'fallback_seconds')}",
-    ]
+    argv += [f"--order={_num(order, 'order')}"]
+    for opt, x in (("pieces", pieces), ("fallback-bits", fallback_bits),
+                   ("fallback-seconds", fallback_seconds)):
+        if x is not None:
+            argv.append(f"--{opt}={_num(x, opt.replace('-', '_'))}")
     if digits is not None:
         argv += [f"--digits={_num(digits, 'digits')}"]
     argv += [f"--time-limit={_num(time_limit, 'time_limit')}"]
@@ -616,7 +644,8 @@ def cor_rigorous(
         e_text=tuple(d["e_text"]),
         width_ts_text=tuple(d["width_ts_text"]),
         width_e_text=tuple(d["width_e_text"]),
-        params=d["params"].reshape(n, 6, 2),
+        params=d["params"].reshape(n, 6, 2) if isinstance(d["params"], np.ndarray)
+        else d["params"],
         ts_seconds=d.get("ts_seconds"),
         horizon=d["horizon"],
         order=d["order"],

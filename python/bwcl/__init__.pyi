@@ -25,7 +25,10 @@ TABLE1: Dict[str, Tuple[str, str]]
 Value = Union[float, int, str, Tuple[Union[float, int, str], Union[float, int, str]]]
 #: six values B,Γ,κ,σ,n,p (or B_b,Γ_b,κ,σ_b,n,p), or the CLI's comma-separated text
 ParamSet = Union[str, Sequence[Value], npt.NDArray[np.floating[Any]]]
-#: SI parameters m, k, c, n, p, alpha, beta, gamma, A, or the CLI's "m=…,k=…" text
+#: a classical law's parameters by name (e.g. {"sigma": 0.3, "n": 1.5}), or "sigma=0.3,n=1.5"
+LawParams = Union[str, Mapping[str, Value]]
+#: SI parameters m, k, c, n, p, alpha, beta, gamma, A (a classical law: m, k and its own,
+#: e.g. chi, n), or the CLI's "m=…,k=…" text
 Physical = Union[str, Mapping[str, Value]]
 #: impact speeds [m/s]: a number, a 1-D array or sequence, or the CLI's list "0.5,1,2"
 Speeds = Union[float, int, str, Sequence[Value], npt.ArrayLike]
@@ -43,7 +46,8 @@ class CorResult:
     separated: npt.NDArray[np.bool_]
     nfev: npt.NDArray[np.int64]
     steps: npt.NDArray[np.int64]
-    params: npt.NDArray[np.float64]
+    #: (n, 6) for a Bouc–Wen model; for a classical law a dict of (n,) arrays by name
+    params: Union[npt.NDArray[np.float64], Dict[str, npt.NDArray[np.float64]]]
     error: Tuple[Optional[str], ...]
     ts_seconds: Optional[npt.NDArray[np.float64]]
     t_c: Optional[npt.NDArray[np.float64]]
@@ -76,7 +80,8 @@ class RigorousResult:
     e_text: Tuple[Optional[Tuple[str, str]], ...]
     width_ts_text: Tuple[Optional[str], ...]
     width_e_text: Tuple[Optional[str], ...]
-    params: npt.NDArray[np.float64]
+    #: (n, 6, 2) for a Bouc–Wen model; for a classical law a dict of (n, 2) arrays by name
+    params: Union[npt.NDArray[np.float64], Dict[str, npt.NDArray[np.float64]]]
     ts_seconds: Optional[npt.NDArray[np.float64]]
     horizon: float
     order: int
@@ -143,8 +148,8 @@ class FitProgress(NamedTuple):
 def cor(
     model: str,
     *,
-    base: Optional[ParamSet] = ...,
-    nd: Optional[ParamSet] = ...,
+    base: Optional[Union[ParamSet, LawParams]] = ...,
+    nd: Optional[Union[ParamSet, LawParams]] = ...,
     physical: Optional[Physical] = ...,
     v0: Optional[Speeds] = ...,
     rtol: float = ...,
@@ -156,25 +161,25 @@ def cor(
 def cor_rigorous(
     model: str,
     *,
-    base: Optional[ParamSet] = ...,
-    nd: Optional[ParamSet] = ...,
+    base: Optional[Union[ParamSet, LawParams]] = ...,
+    nd: Optional[Union[ParamSet, LawParams]] = ...,
     physical: Optional[Physical] = ...,
     v0: Optional[Speeds] = ...,
     horizon: float = ...,
     order: int = ...,
-    pieces: int = ...,
+    pieces: Optional[int] = ...,
     threads: Optional[int] = ...,
     raise_on_failure: bool = ...,
-    fallback_bits: int = ...,
-    fallback_seconds: float = ...,
+    fallback_bits: Optional[int] = ...,
+    fallback_seconds: Optional[float] = ...,
     digits: Optional[int] = ...,
     time_limit: float = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,
     *,
-    base: Optional[ParamSet] = ...,
-    nd: Optional[ParamSet] = ...,
+    base: Optional[Union[ParamSet, LawParams]] = ...,
+    nd: Optional[Union[ParamSet, LawParams]] = ...,
     physical: Optional[Physical] = ...,
     v0: Optional[Speeds] = ...,
     t_end: Optional[float] = ...,
@@ -191,8 +196,8 @@ def trajectory(
 def loop(
     model: str,
     *,
-    base: Optional[ParamSet] = ...,
-    nd: Optional[ParamSet] = ...,
+    base: Optional[Union[ParamSet, LawParams]] = ...,
+    nd: Optional[Union[ParamSet, LawParams]] = ...,
     physical: Optional[Physical] = ...,
     v0: Optional[Speeds] = ...,
     t_end: Optional[float] = ...,

@@ -190,6 +190,20 @@ PHYSICAL PARAMETERS (--physical, keys in any order, SI units):
   The scales are T_c = D^(−1/(p+1)) (m/k)^(1/(p+1)) v0^(−(p−1)/(p+1)) [s],
   X_c = D^(−1/(p+1)) (m/k)^(1/(p+1)) v0^(2/(p+1)) [m].
 
+CLASSICAL LAWS (--model hooke|hertz|hunt-crossley|kelvin-voigt|linear-maxwell), parameters
+by name, n = 3/2 when not given:
+  law             --physical (SI)     --nd          --base (at v0 = 1 m/s)
+  hooke           m, k                ''            ''
+  hertz           m, k, n             n             n
+  hunt-crossley   m, k, n, chi        sigma, n      sigma_b, n
+  kelvin-voigt    m, k, c             zeta          zeta
+  linear-maxwell  m, k, c             c             c
+  F = kδ (hooke), k|δ|^(n−1)δ (hertz), k|δ|^(n−1)δ + χ|δ|^n δ̇ (hunt-crossley), kδ + cδ̇
+  (kelvin-voigt), k δ₁ = c δ̇₂ with δ = δ₁ + δ₂ (linear-maxwell); m, k > 0 [kg], [N m^−n];
+  χ ≥ 0 [N s m^−(n+1)]; c ≥ 0 (kelvin-voigt), c > 0 (linear-maxwell) [N s/m]. Nondimensional:
+  σ = χ v0/k = σ_b v0, ζ = c/(2√(mk)), c̃ = c/√(mk); scales L = (m v0²/k)^(1/(n+1)) [m]
+  (n = 1 for the linear laws), T_c = L/v0 [s]. Separation as for the Bouc–Wen models.
+
 Decimals are read as written: each is checked against 𝓟 exactly as a rational (κ =
 0.9999999999999999 lies in (0, 1)), with --rigorous every input is enclosed exactly (0.1 is
 not rounded to a double) and any value may be a range a..b (e.g. --v0 0.9..1.1).
@@ -208,7 +222,9 @@ EXAMPLES:
   A baseball (Table 2), physical units:
     bwcl cor --model shc --physical m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925 --v0 2.15
   Proved enclosures over a range of speeds:
-    bwcl cor --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 0.9..1.1 --rigorous"
+    bwcl cor --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 0.9..1.1 --rigorous
+  A classical law, physical units, proved:
+    bwcl cor --model hunt-crossley --physical m=0.146,k=1e9,chi=2e8,n=1.5 --v0 1,2 --rigorous"
     };
 }
 
@@ -217,7 +233,8 @@ macro_rules! trajectory_examples {
         "
 EXAMPLES:
     bwcl trajectory --model shc --base 1.43,-1.42,0.632,0.00715,1.31,1.27 --v0 1 --out dss.csv
-    bwcl loop --model shc --physical m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925 --v0 2.15 --physical-units"
+    bwcl loop --model shc --physical m=0.146,k=117080063,c=5854003,n=1.1,p=1.7,alpha=0.1,beta=981.05,gamma=-961.4,A=0.925 --v0 2.15 --physical-units
+    bwcl loop --model kelvin-voigt --physical m=1,k=1e6,c=200 --v0 1 --physical-units"
     };
 }
 
@@ -713,12 +730,15 @@ pub struct CostArgs {
         .args(["base", "nd", "physical"])
 ))]
 pub struct ParamArgs {
-    /// The collision model: shc (NDBWSHCCM, Kelvin–Voigt type) or maxwell (NDBWMCM).
+    /// The collision model: a Bouc–Wen model, shc (NDBWSHCCM, Kelvin–Voigt type) or maxwell
+    /// (NDBWMCM), or a classical law (its parameters by name, see CLASSICAL LAWS).
     #[arg(long, value_enum)]
-    pub model: ModelArg,
+    pub model: FamilyArg,
 
     /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p): the nondimensional set at v0 = 1 m/s,
-    /// mapped to each --v0 by 𝓟(P*, v0). Needs --v0.
+    /// mapped to each --v0 by 𝓟(P*, v0). For a classical law its family by name
+    /// (hunt-crossley sigma_b=…[,n=…], σ = σ_b·v0; hertz n=…; kelvin-voigt zeta=…;
+    /// linear-maxwell c=…; hooke ''). Needs --v0.
     #[arg(
         long,
         value_name = "B,Γ,κ,σ_b,n,p",
@@ -728,6 +748,8 @@ pub struct ParamArgs {
     pub base: Option<String>,
 
     /// A nondimensional parameter set P = (B, Γ, κ, σ, n, p), used as is (one case, no --v0).
+    /// For a classical law by name: hunt-crossley sigma=…[,n=…]; hertz [n=…]; kelvin-voigt
+    /// zeta=…; linear-maxwell c=… (c̃ = c/√(mk)); hooke '' (n is 3/2 when not given).
     #[arg(
         long,
         value_name = "B,Γ,κ,σ,n,p",
@@ -737,7 +759,9 @@ pub struct ParamArgs {
     pub nd: Option<String>,
 
     /// Physical parameters in SI units:
-    /// m=…,k=…,c=…,n=…,p=…,alpha=…,beta=…,gamma=…,A=… (see PHYSICAL PARAMETERS). Needs --v0.
+    /// m=…,k=…,c=…,n=…,p=…,alpha=…,beta=…,gamma=…,A=… (see PHYSICAL PARAMETERS); for a
+    /// classical law m=…,k=… and hertz [n=…], hunt-crossley chi=…[,n=…], kelvin-voigt and
+    /// linear-maxwell c=… (see CLASSICAL LAWS). Needs --v0.
     #[arg(long, value_name = "KEY=VALUE,…", requires = "v0")]
     pub physical: Option<String>,
 
@@ -926,11 +950,13 @@ pub enum FamilyArg {
     Hooke,
     /// Hertz's law (e = 1, no parameter).
     Hertz,
-    /// Hunt–Crossley, σ = σ_b·v0 (parameter sigma_b = χ·(1 m/s)/k; e does not depend on n).
+    /// Hunt–Crossley, F = k|δ|^(n−1)δ + χ|δ|^n δ̇, σ = χv0/k = σ_b·v0 (fit: sigma_b =
+    /// χ·(1 m/s)/k; e does not depend on n).
     HuntCrossley,
-    /// Linear Kelvin–Voigt (parameter zeta = c/(2√(mk)); e the same at every speed).
+    /// Linear Kelvin–Voigt, F = kδ + cδ̇ (zeta = c/(2√(mk)); e the same at every speed).
     KelvinVoigt,
-    /// Linear Maxwell (parameter c = c/√(mk) > 1/2; e the same at every speed).
+    /// Linear Maxwell, spring and dashpot in series (c = c/√(mk); it separates for c > 1/2, e
+    /// the same at every speed).
     LinearMaxwell,
 }
 

@@ -139,7 +139,7 @@ fn band_case(
 /// `cor --rigorous --band FILE`: the proved band, written to FILE; the summary on stdout.
 pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     input::out_path(Some(path))?;
-    let kind = ModelKind::from(a.params.model);
+    let kind = input::bouc_wen_only(a.params.model, "--band")?;
     let opts: TaylorOptions = input::taylor_options(&a.engine)?;
     let cases = input::cases::<Interval>(&a.params)?;
     let (base, lo, hi) = band_case(kind, &cases)?;

@@ -6,7 +6,7 @@
 
 use super::args::{Cli, Command, CorArgs, TrajectoryArgs};
 use super::input::{self, Case};
-use super::output::{self, FloatRow, ParamsOut, RigorousRow, bounds, num, width};
+use super::output::{self, FloatRow, ParamsOut, RigorousRow, RowParams, bounds, num, width};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::engines::taylor::RigorError;
 use bwcl::engines::taylor::TaylorOptions;
@@ -57,6 +57,7 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
 
 fn cor(a: &CorArgs) -> Result<i32, CliError> {
     if let Some(d) = a.digits {
+        input::bouc_wen_only(a.params.model, "--digits")?;
         if !a.engine.rigorous {
             return Err(CliError::Input(format!(
                 "--digits {d} is an option of the rigorous engine: add --rigorous"
@@ -73,9 +74,11 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         return super::band::band(a, path);
     }
     input::out_path(a.out.as_deref())?;
-    let kind = ModelKind::from(a.params.model);
     let mut range_notes: Vec<String> = Vec::new();
-    let (bytes, failed, total, elapsed) = if a.engine.rigorous {
+    let (bytes, failed, total, elapsed) = if let Some(law) = a.params.model.law() {
+        super::law_runs::cor(a, law)?
+    } else if a.engine.rigorous {
+        let kind = input::bouc_wen_only(a.params.model, "cor")?;
         let opts = input::taylor_options(&a.engine)?;
         let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
         let cases = input::cases::<Interval>(&a.params)?;
@@ -128,6 +131,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
             elapsed,
         )
     } else {
+        let kind = input::bouc_wen_only(a.params.model, "cor")?;
         let opts = input::float_options(&a.engine)?;
         let cases = input::cases::<f64>(&a.params)?;
         let start = std::time::Instant::now();
@@ -213,32 +217,34 @@ pub(crate) fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> 
     let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts)
         .map(|r| (r.ts, r.e, r.stats)));
     let t_c = c.scales.as_ref().map(|s| s.t_c);
-    let mut row = FloatRow {
-        model: kind.name(),
-        v0: c.v0,
-        separated: false,
-        ts: None,
-        e: None,
-        ts_seconds: t_c.map(|_| None),
+    let mut row = FloatRow::new(
+        kind.name(),
+        c.v0,
         t_c,
-        nfev: 0,
-        steps: 0,
-        horizon: opts.horizon,
-        params: params_f64(&c.params),
-        error: None,
-    };
+        opts.horizon,
+        RowParams::BoucWen(params_f64(&c.params)),
+    );
+    settle_float(&mut row, res);
+    row
+}
+
+/// A float row's result: T_s (in seconds too when the row has the time scale) and e, or why
+/// the integration failed.
+pub(crate) fn settle_float(
+    row: &mut FloatRow,
+    res: Result<(Option<f64>, f64, bwcl::engines::dop853::Stats), bwcl::observables::ImpactError>,
+) {
     match res {
         Ok((ts, e, stats)) => {
             row.separated = ts.is_some();
             row.ts = ts;
             row.e = Some(e);
-            row.ts_seconds = t_c.map(|tc| ts.map(|t| t * tc));
+            row.ts_seconds = row.t_c.map(|tc| ts.map(|t| t * tc));
             row.nfev = stats.nfev;
             row.steps = stats.naccepted;
         }
         Err(err) => row.error = Some(err.to_string()),
     }
-    row
 }
 
 /// What a case without separation before the horizon proved.
@@ -292,23 +298,15 @@ pub(crate) fn rigorous_row(
             .map(|enc| (enc.ts, enc.e)))
     };
     let mut row = RigorousRow {
-        model: kind.name(),
-        v0: c.v0.map(bounds),
-        proved: false,
-        separated: false,
-        ts: None,
-        width_ts: None,
-        e: None,
-        width_e: None,
-        ts_seconds: c.scales.as_ref().map(|_| None),
-        horizon: opts.horizon,
-        order: opts.order,
-        params: params_interval(&c.params),
-        reason: None,
-        sensitivities: None,
-        bits: 53,
-        fallback: None,
         range,
+        ..RigorousRow::new(
+            kind.name(),
+            c.v0.map(bounds),
+            c.scales.is_some(),
+            opts.horizon,
+            opts.order,
+            RowParams::BoucWen(params_interval(&c.params)),
+        )
     };
     // not decided at f64: the precision fallback (point cases given as text)
     let res = match (res, &c.text) {
@@ -347,23 +345,7 @@ pub(crate) fn rigorous_row(
         }
         (res, _) => res,
     };
-    match res {
-        Ok((ts, e)) => {
-            row.proved = true;
-            row.separated = true;
-            row.ts = Some(bounds(ts));
-            row.width_ts = Some(width(ts));
-            row.e = Some(bounds(e));
-            row.width_e = Some(width(e));
-            row.ts_seconds = c.scales.as_ref().map(|s| Some(bounds(ts * s.t_c)));
-        }
-        // the condition proved to fail on [0, horizon]: T_s > horizon, a result
-        Err(err) if err.no_separation() => {
-            row.proved = true;
-            row.reason = Some(no_separation_text(opts.horizon));
-        }
-        Err(err) => row.reason = Some(input::limit_text(&err, time_limit)),
-    }
+    settle_rigorous(&mut row, res, c.scales.as_ref().map(|s| s.t_c), time_limit);
     if sensitivities {
         let names = c.inputs.names();
         row.sensitivities = Some(
@@ -389,9 +371,37 @@ pub(crate) fn rigorous_row(
     row
 }
 
+/// A rigorous row's result: the enclosures of T_s (in seconds too, with the time scale `t_c`)
+/// and e; no separation before the horizon (proved: a result); or the reason it was not
+/// proved (`time_limit`: the --time-limit given, named when the run stopped at its deadline).
+pub(crate) fn settle_rigorous(
+    row: &mut RigorousRow,
+    res: Result<(Interval, Interval), RigorError>,
+    t_c: Option<Interval>,
+    time_limit: Option<f64>,
+) {
+    match res {
+        Ok((ts, e)) => {
+            row.proved = true;
+            row.separated = true;
+            row.ts = Some(bounds(ts));
+            row.width_ts = Some(width(ts));
+            row.e = Some(bounds(e));
+            row.width_e = Some(width(e));
+            row.ts_seconds = t_c.map(|t_c| Some(bounds(ts * t_c)));
+        }
+        // the condition proved to fail on [0, horizon]: T_s > horizon, a result
+        Err(err) if err.no_separation() => {
+            row.proved = true;
+            row.reason = Some(no_separation_text(row.horizon));
+        }
+        Err(err) => row.reason = Some(input::limit_text(&err, time_limit)),
+    }
+}
+
 /// Which CSV `curve` writes.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Curve {
+pub(crate) enum Curve {
     /// t, the states, x, v, F.
     Trajectory,
     /// x, F (or x_mm, F_N).
@@ -400,14 +410,16 @@ enum Curve {
 
 /// A CSV: the header and the rows, already formatted, and a note for stderr (written after
 /// the CSV).
-type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
+pub(crate) type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
 
 fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
-    let kind = ModelKind::from(a.params.model);
     let (points, t_end) = (a.points, a.t_end);
     check_units(a)?;
-    let (head, rows, remark) = if a.engine.rigorous {
+    let (head, rows, remark) = if let Some(law) = a.params.model.law() {
+        super::law_runs::curve(a, law, what)?
+    } else if a.engine.rigorous {
+        let kind = input::bouc_wen_only(a.params.model, "this command")?;
         let opts = input::taylor_options(&a.engine)?;
         let case = input::single_case::<Interval>(&a.params)?;
         let bar = super::progress::Progress::cases(
@@ -426,6 +438,7 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
         bar.finish();
         r?
     } else {
+        let kind = input::bouc_wen_only(a.params.model, "this command")?;
         let opts = input::float_options(&a.engine)?;
         let case = input::single_case::<f64>(&a.params)?;
         let units = match (&case.scales, a.physical_units) {
@@ -457,7 +470,7 @@ pub(crate) fn check_units(a: &TrajectoryArgs) -> Result<(), CliError> {
 }
 
 /// Samples on the float engine's dense output.
-fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
+pub(crate) fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
     model: &M,
     opts: &FloatOptions,
     t_end: Option<f64>,
@@ -517,7 +530,7 @@ fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
 }
 
 /// Samples of the proved flow: the enclosure of every column at each grid time.
-fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
+pub(crate) fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
     t_end: Option<f64>,
@@ -555,8 +568,7 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
         head.push(format!("{n}_hi"));
     }
     let mut rows = Vec::with_capacity(points);
-    for i in 0..points {
-        let t = end * i as f64 / (points - 1) as f64;
+    for t in bwcl::observables::trajectory::sample_times(end, points) {
         let s = enc.flow.enclose(t).ok_or_else(|| {
             CliError::Failed(format!("the proved flow has no enclosure at T = {t}"))
         })?;

@@ -4,12 +4,13 @@
 //! rigorous one (decimals enclosed as written, ranges a..b allowed).
 
 use super::CliError;
-use super::args::{EngineArgs, ParamArgs, TIME_LIMIT};
+use super::args::{EngineArgs, FamilyArg, ParamArgs, TIME_LIMIT};
 use bwcl::arith::Real;
 use bwcl::engines::dop853::Options;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::engines::taylor::{DEADLINE, RigorError};
 use bwcl::fit::data::echo;
+use bwcl::models::classical::{Law, LawParams, LawSource};
 use bwcl::models::params::show;
 use bwcl::models::scaling::{PhysicalParams, Scales, nd_from_base, parse_speeds};
 use bwcl::models::{ModelKind, NdParams, ParamError};
@@ -43,9 +44,98 @@ pub struct Case<R> {
     pub text: Option<ParamText>,
 }
 
-/// The validated cases of the parameter options, in the order of --v0.
+/// The Bouc–Wen model of --model, or the refusal of a classical law for `what` (an option or
+/// a command that only the Bouc–Wen models have).
+pub fn bouc_wen_only(model: FamilyArg, what: &str) -> Result<ModelKind, CliError> {
+    model.kind().ok_or_else(|| {
+        CliError::Input(format!(
+            "--model {}: {what} is for the Bouc–Wen models (shc, maxwell), not the classical laws",
+            model.key()
+        ))
+    })
+}
+
+/// One collision of a classical law: its impact speed (none for --nd), its nondimensional
+/// parameters there, and for --physical the scales at that speed.
+#[derive(Clone, Debug)]
+pub struct LawCase<R> {
+    pub v0: Option<R>,
+    pub nd: LawParams<R>,
+    pub scales: Option<Scales<R>>,
+}
+
+/// The validated cases of a classical law (`--model <law>`), in the order of --v0.
+pub fn law_cases<R: Real>(p: &ParamArgs, law: Law) -> Result<Vec<LawCase<R>>, CliError> {
+    let (opt, text, source) = match (&p.nd, &p.base, &p.physical) {
+        (Some(t), _, _) => ("--nd", t, LawSource::Nd),
+        (_, Some(t), _) => ("--base", t, LawSource::Base),
+        (_, _, Some(t)) => ("--physical", t, LawSource::Physical),
+        _ => {
+            return Err(CliError::Input(
+                "give exactly one of --base, --nd, --physical".into(),
+            ));
+        }
+    };
+    let given = LawParams::<R>::parse(law, source, text).map_err(|e| {
+        let pairs: Vec<(&str, &str)> = text
+            .split(',')
+            .filter_map(|item| item.split_once('='))
+            .map(|(k, v)| (k.trim(), v.trim()))
+            .collect();
+        input_error::<R>(opt, text, &pairs, e)
+    })?;
+    if source == LawSource::Nd {
+        return Ok(vec![LawCase {
+            v0: None,
+            nd: given,
+            scales: None,
+        }]);
+    }
+    let Some(v0_text) = &p.v0 else {
+        return Err(CliError::Input(
+            "--v0 is required with --base and --physical".into(),
+        ));
+    };
+    speeds::<R>(v0_text)?
+        .into_iter()
+        .zip(v0_text.split(','))
+        .map(|(v0, token)| {
+            let at = |e: ParamError| {
+                CliError::Input(format!(
+                    "{opt} at v0 = {}: {}",
+                    echo(token.trim()),
+                    compact(&e.0)
+                ))
+            };
+            Ok(LawCase {
+                nd: given.at(&v0).map_err(at)?,
+                scales: given.scales(&v0).map_err(at)?,
+                v0: Some(v0),
+            })
+        })
+        .collect()
+}
+
+/// The single case of a classical law's trajectory/loop: exactly one impact speed.
+pub fn single_law_case<R: Real>(p: &ParamArgs, law: Law) -> Result<LawCase<R>, CliError> {
+    only_one(p, law_cases::<R>(p, law)?)
+}
+
+/// The one case of `all`, or the refusal of a --v0 list of several speeds.
+fn only_one<C>(p: &ParamArgs, mut all: Vec<C>) -> Result<C, CliError> {
+    if all.len() != 1 {
+        return Err(CliError::Input(format!(
+            "--v0 '{}': this command takes exactly one impact speed, got {}",
+            echo(p.v0.as_deref().unwrap_or("")),
+            all.len()
+        )));
+    }
+    Ok(all.remove(0))
+}
+
+/// The validated cases of the parameter options, in the order of --v0 (a Bouc–Wen model).
 pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
-    let kind = ModelKind::from(p.model);
+    let kind = bouc_wen_only(p.model, "this command")?;
     if let Some(text) = &p.nd {
         let params =
             NdParams::<R>::parse(kind, text).map_err(|e| nd_error::<R>("--nd", text, e))?;
@@ -253,15 +343,7 @@ pub fn compact(msg: &str) -> String {
 
 /// The single case of trajectory/loop: exactly one impact speed.
 pub fn single_case<R: Real>(p: &ParamArgs) -> Result<Case<R>, CliError> {
-    let mut all = cases::<R>(p)?;
-    if all.len() != 1 {
-        return Err(CliError::Input(format!(
-            "--v0 '{}': this command takes exactly one impact speed, got {}",
-            echo(p.v0.as_deref().unwrap_or("")),
-            all.len()
-        )));
-    }
-    Ok(all.remove(0))
+    only_one(p, cases::<R>(p)?)
 }
 
 /// --order and --pieces belong to the rigorous engine (clap's `requires` does not see every

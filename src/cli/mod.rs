@@ -11,6 +11,7 @@ pub(crate) mod compare;
 pub(crate) mod fit;
 pub(crate) mod identify;
 pub(crate) mod input;
+pub(crate) mod law_runs;
 pub(crate) mod laws;
 pub(crate) mod output;
 pub(crate) mod precise;

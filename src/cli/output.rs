@@ -23,6 +23,15 @@ pub struct ParamsOut<T> {
     pub p: T,
 }
 
+/// The parameters of a row: the six of a Bouc–Wen set, or a classical law's by name (JSON: an
+/// object either way).
+#[derive(Serialize, Clone, Debug)]
+#[serde(untagged)]
+pub enum RowParams<T> {
+    BoucWen(ParamsOut<T>),
+    Law(std::collections::BTreeMap<&'static str, T>),
+}
+
 /// One float case of `cor`.
 #[derive(Serialize, Clone, Debug)]
 pub struct FloatRow {
@@ -43,10 +52,37 @@ pub struct FloatRow {
     pub nfev: usize,
     pub steps: usize,
     pub horizon: f64,
-    pub params: ParamsOut<f64>,
+    pub params: RowParams<f64>,
     /// Why the integration failed (the case is then not a result).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+}
+
+impl FloatRow {
+    /// A case not yet computed: its model, speed, time scale (--physical), horizon and
+    /// parameters.
+    pub fn new(
+        model: &'static str,
+        v0: Option<f64>,
+        t_c: Option<f64>,
+        horizon: f64,
+        params: RowParams<f64>,
+    ) -> Self {
+        FloatRow {
+            model,
+            v0,
+            separated: false,
+            ts: None,
+            e: None,
+            ts_seconds: t_c.map(|_| None),
+            t_c,
+            nfev: 0,
+            steps: 0,
+            horizon,
+            params,
+            error: None,
+        }
+    }
 }
 
 /// One rigorous case of `cor`: proved enclosures, or the reason they could not be proved.
@@ -79,7 +115,7 @@ pub struct RigorousRow {
     pub horizon: f64,
     pub order: usize,
     #[serde(serialize_with = "json_params")]
-    pub params: ParamsOut<[f64; 2]>,
+    pub params: RowParams<[f64; 2]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
     /// With --sensitivities: proved ∂T_s/∂u and ∂e/∂u of every input u (JSON only).
@@ -96,6 +132,39 @@ pub struct RigorousRow {
     /// note on stderr otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<RangeOut>,
+}
+
+impl RigorousRow {
+    /// A case not yet proved: its model, speed, whether it has T_s in seconds (--physical),
+    /// horizon, Taylor order and parameters.
+    pub fn new(
+        model: &'static str,
+        v0: Option<[f64; 2]>,
+        physical: bool,
+        horizon: f64,
+        order: usize,
+        params: RowParams<[f64; 2]>,
+    ) -> Self {
+        RigorousRow {
+            model,
+            v0,
+            proved: false,
+            separated: false,
+            ts: None,
+            width_ts: None,
+            e: None,
+            width_e: None,
+            ts_seconds: physical.then_some(None),
+            horizon,
+            order,
+            params,
+            reason: None,
+            sensitivities: None,
+            bits: 53,
+            fallback: None,
+            range: None,
+        }
+    }
 }
 
 /// The adaptive split of a range ([`crate::observables::split`]).
@@ -228,16 +297,23 @@ fn json_width<S: Serializer>(w: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
 }
 
 /// The interval parameters, each rounded outward.
-fn json_params<S: Serializer>(p: &ParamsOut<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
-    ParamsOut {
-        b: JsonPair(p.b),
-        gamma: JsonPair(p.gamma),
-        kappa: JsonPair(p.kappa),
-        sigma: JsonPair(p.sigma),
-        n: JsonPair(p.n),
-        p: JsonPair(p.p),
+fn json_params<S: Serializer>(p: &RowParams<[f64; 2]>, s: S) -> Result<S::Ok, S::Error> {
+    match p {
+        RowParams::BoucWen(p) => ParamsOut {
+            b: JsonPair(p.b),
+            gamma: JsonPair(p.gamma),
+            kappa: JsonPair(p.kappa),
+            sigma: JsonPair(p.sigma),
+            n: JsonPair(p.n),
+            p: JsonPair(p.p),
+        }
+        .serialize(s),
+        RowParams::Law(m) => {
+            let named: std::collections::BTreeMap<_, _> =
+                m.iter().map(|(k, v)| (*k, JsonPair(*v))).collect();
+            named.serialize(s)
+        }
     }
-    .serialize(s)
 }
 
 /// A lower bound (`Rounding::Down`) or an upper bound or width (`Rounding::Up`) as the

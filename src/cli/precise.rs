@@ -72,7 +72,7 @@ pub fn cor(a: &CorArgs, digits: usize) -> Result<i32, CliError> {
         .ok_or_else(|| CliError::Input(format!("--digits {digits}: must be in 1..=100")))?;
     input::out_path(a.out.as_deref())?;
     let opts = input::taylor_options(&a.engine)?;
-    let kind = ModelKind::from(a.params.model);
+    let kind = input::bouc_wen_only(a.params.model, "--digits")?;
     let cases = cases(a)?;
     let start = std::time::Instant::now();
     let bar = super::progress::Progress::cases(

@@ -58,15 +58,7 @@ use std::time::{Duration, Instant};
 /// The Hertz exponent of the runs (e does not depend on it).
 pub const HERTZ_N: f64 = 1.5;
 
-/// A classical law as a family over the impact speed (module doc).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Law {
-    Hooke,
-    Hertz,
-    HuntCrossley,
-    KelvinVoigt,
-    LinearMaxwell,
-}
+pub use crate::models::classical::Law;
 
 /// How e varies with θ on an interval.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,29 +68,6 @@ pub enum Monotone {
 }
 
 impl Law {
-    pub const ALL: [Law; 5] = [
-        Law::Hooke,
-        Law::Hertz,
-        Law::HuntCrossley,
-        Law::KelvinVoigt,
-        Law::LinearMaxwell,
-    ];
-
-    /// The law's name on the command line.
-    pub fn key(self) -> &'static str {
-        match self {
-            Law::Hooke => "hooke",
-            Law::Hertz => "hertz",
-            Law::HuntCrossley => "hunt-crossley",
-            Law::KelvinVoigt => "kelvin-voigt",
-            Law::LinearMaxwell => "linear-maxwell",
-        }
-    }
-
-    pub fn from_key(key: &str) -> Option<Law> {
-        Law::ALL.into_iter().find(|l| l.key() == key)
-    }
-
     /// The name of θ (`None`: the law has no parameter that enters e).
     pub fn parameter(self) -> Option<&'static str> {
         match self {

@@ -8,10 +8,13 @@
 //!   cases), its published damping formulas and its exact restitution relation;
 //! - [`kelvin_voigt`]: the linear Kelvin–Voigt law;
 //! - [`linear_maxwell`]: the linear Maxwell law;
+//! - [`classical`]: the classical laws' parameters (nondimensional, base or physical) and
+//!   the model each gives at an impact speed;
 //! - [`params`]: parameter sets and the admissible set 𝓟;
 //! - [`scaling`]: nondimensionalization both ways and the base-parameter map 𝓟(P*, v0).
 
 pub mod bwhcl;
+pub mod classical;
 pub mod hunt_crossley;
 pub mod kelvin_voigt;
 pub mod linear_maxwell;

@@ -40,6 +40,21 @@ impl Units {
     }
 }
 
+/// `points` (at least 2) uniform times on [0, end], the last exactly `end` (end·i/(points − 1)
+/// may round past it, and a sample past the integration's end would be lost).
+pub fn sample_times(end: f64, points: usize) -> Vec<f64> {
+    let last = points.max(2) - 1;
+    (0..=last)
+        .map(|i| {
+            if i == last {
+                end
+            } else {
+                (end * i as f64 / last as f64).min(end)
+            }
+        })
+        .collect()
+}
+
 /// Samples the trajectory at `points` uniform times on [0, T_end], T_end = `t_end` or, when
 /// `None`, T_s (the horizon if there is no separation). The last sample is at T_end.
 pub fn trajectory<M: CollisionModel<f64, N>, const N: usize>(
@@ -54,10 +69,7 @@ pub fn trajectory<M: CollisionModel<f64, N>, const N: usize>(
         Some(t) => return Err(ImpactError::BadHorizon(t)),
         None => impact(model, opts)?.ts.unwrap_or(opts.horizon),
     };
-    let points = points.max(2);
-    let grid: Vec<f64> = (0..points)
-        .map(|i| end * i as f64 / (points - 1) as f64)
-        .collect();
+    let grid = sample_times(end, points);
     let mut out = Vec::with_capacity(points);
     let sample = |t: f64, y: &[f64; N]| Sample {
         t,
@@ -129,5 +141,15 @@ mod tests {
             );
         }
         assert!((tr.last().unwrap().t - std::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_last_sample_time_is_the_end() {
+        // 2.956075324749551·49/49 rounds past the end (the Kelvin–Voigt T_s at ζ = 0.1)
+        let end = 2.956075324749551;
+        assert!(end * 49.0 / 49.0 > end);
+        let g = sample_times(end, 50);
+        assert_eq!((g.len(), g[0], g[49]), (50, 0.0, end));
+        assert!(g.windows(2).all(|w| w[0] < w[1]));
     }
 }

@@ -2,42 +2,85 @@
 //! eq:main_cor), one case per impact speed, the cases in parallel.
 
 use super::arrays::{put_bool, put_f64, put_f64_2d, put_i64, speed_lists};
-use super::cli::args::{Command, CorArgs};
+use super::cli::CliError;
+use super::cli::args::{Command, CorArgs, ParamArgs};
 use super::cli::commands::float_row;
-use super::cli::input::{self, Case};
+use super::cli::input;
+use super::cli::law_runs;
+use super::cli::output::RowParams;
 use super::run::{compute_rows, parse, py_error};
-use bwcl::arith::Real;
-use bwcl::models::ModelKind;
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// The `cor` arguments of `argv` (plus the first --v0 list) and the validated cases of every
-/// list, in order.
-pub fn cor_cases<R: Real>(
-    argv: Vec<String>,
-    lists: Option<Vec<String>>,
-) -> PyResult<(CorArgs, Vec<Case<R>>)> {
+/// The `cor` arguments of `argv` (plus the first --v0 list).
+pub fn cor_args(argv: Vec<String>, lists: &Option<Vec<String>>) -> PyResult<CorArgs> {
     let mut argv = argv;
     if let Some(first) = lists.as_ref().and_then(|l| l.first()) {
         argv.push(format!("--v0={first}"));
     }
-    let Command::Cor(a) = parse(&argv)?.command else {
-        return Err(PyValueError::new_err("not a cor command"));
-    };
-    let mut cases = Vec::new();
-    match &lists {
-        None => cases = input::cases::<R>(&a.params).map_err(py_error)?,
+    match parse(&argv)?.command {
+        Command::Cor(a) => Ok(a),
+        _ => Err(PyValueError::new_err("not a cor command")),
+    }
+}
+
+/// The validated cases of every --v0 list, in order (`make`: the cases of one list).
+pub fn per_list<C>(
+    a: &CorArgs,
+    lists: &Option<Vec<String>>,
+    make: impl Fn(&ParamArgs) -> Result<Vec<C>, CliError>,
+) -> PyResult<Vec<C>> {
+    match lists {
+        None => make(&a.params).map_err(py_error),
         Some(lists) => {
+            let mut cases = Vec::new();
             for text in lists {
                 let mut p = a.params.clone();
                 p.v0 = Some(text.clone());
-                cases.extend(input::cases::<R>(&p).map_err(py_error)?);
+                cases.extend(make(&p).map_err(py_error)?);
+            }
+            Ok(cases)
+        }
+    }
+}
+
+/// The parameters of the rows: an (n, 6) array for a Bouc–Wen model (an (n, 12) one of
+/// bounds for enclosures), a dict of arrays by name for a classical law.
+pub fn put_params<T: Copy, const W: usize>(
+    d: &Bound<'_, PyDict>,
+    params: Vec<&RowParams<T>>,
+    flat: impl Fn(T) -> [f64; W],
+) -> PyResult<()> {
+    let mut six = Vec::new();
+    let mut named: std::collections::BTreeMap<&str, Vec<f64>> = Default::default();
+    for p in params {
+        match p {
+            RowParams::BoucWen(p) => six.extend(
+                [p.b, p.gamma, p.kappa, p.sigma, p.n, p.p]
+                    .into_iter()
+                    .flat_map(&flat),
+            ),
+            RowParams::Law(m) => {
+                for (k, v) in m {
+                    named.entry(k).or_default().extend(flat(*v));
+                }
             }
         }
     }
-    Ok((a, cases))
+    if named.is_empty() {
+        return put_f64_2d(d, "params", six, 6 * W);
+    }
+    let out = PyDict::new(d.py());
+    for (k, v) in named {
+        if W == 1 {
+            put_f64(&out, k, v)?;
+        } else {
+            put_f64_2d(&out, k, v, W)?;
+        }
+    }
+    d.set_item("params", out)
 }
 
 /// T_s and e of every case (see `bwcl.cor`): a dict of NumPy arrays.
@@ -51,15 +94,24 @@ pub fn cor<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let lists = speed_lists(v0_array, v0_tokens);
-    let (a, cases) = cor_cases::<f64>(argv, lists)?;
+    let a = cor_args(argv, &lists)?;
     if a.engine.rigorous {
         return Err(PyValueError::new_err("--rigorous: use bwcl.cor_rigorous"));
     }
-    let kind = ModelKind::from(a.params.model);
     let opts = input::float_options(&a.engine).map_err(py_error)?;
-    let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| float_row(kind, c, &opts))?;
+    let (rows, seconds, used) = match a.params.model.law() {
+        Some(law) => {
+            let cases = per_list(&a, &lists, |p| input::law_cases::<f64>(p, law))?;
+            compute_rows(py, threads, &cases, |c| law_runs::float_row(law, c, &opts))?
+        }
+        None => {
+            let kind = input::bouc_wen_only(a.params.model, "cor").map_err(py_error)?;
+            let cases = per_list(&a, &lists, input::cases::<f64>)?;
+            compute_rows(py, threads, &cases, |c| float_row(kind, c, &opts))?
+        }
+    };
     let d = PyDict::new(py);
-    d.set_item("model", kind.name())?;
+    d.set_item("model", a.params.model.key())?;
     put_f64(
         &d,
         "v0",
@@ -78,14 +130,7 @@ pub fn cor<'py>(
     put_bool(&d, "separated", rows.iter().map(|r| r.separated).collect())?;
     put_i64(&d, "nfev", rows.iter().map(|r| r.nfev as i64).collect())?;
     put_i64(&d, "steps", rows.iter().map(|r| r.steps as i64).collect())?;
-    let params: Vec<f64> = rows
-        .iter()
-        .flat_map(|r| {
-            let p = &r.params;
-            [p.b, p.gamma, p.kappa, p.sigma, p.n, p.p]
-        })
-        .collect();
-    put_f64_2d(&d, "params", params, 6)?;
+    put_params(&d, rows.iter().map(|r| &r.params).collect(), |x| [x])?;
     if a.params.physical.is_some() {
         put_f64(
             &d,

@@ -9,7 +9,7 @@ use super::cli::input::Case;
 use super::cli::precise::texts;
 use super::rigorous::pair_text;
 use super::run::{compute_rows, py_error};
-use bwcl::models::ModelKind;
+
 use bwcl::observables::precision::{
     PreciseEnclosure, bits_for_digits, options_for_digits, outward_f64, outward_text,
     rigorous_impact_digits_or_f64, width_text,
@@ -42,7 +42,7 @@ pub fn cor_digits<'py>(
     let d = digits as u32;
     let bits = bits_for_digits(d)
         .ok_or_else(|| PyValueError::new_err(format!("--digits {digits}: must be in 1..=100")))?;
-    let kind = ModelKind::from(a.params.model);
+    let kind = super::cli::input::bouc_wen_only(a.params.model, "digits").map_err(py_error)?;
     let opts = super::cli::input::taylor_options(&a.engine).map_err(py_error)?;
     let v0s: Vec<Option<Interval>> = cases.iter().map(|c| c.v0).collect();
     let params: Vec<f64> = cases

@@ -3,11 +3,14 @@
 //! ([`bwcl::observables::decimal`]); a case that is not proved carries its reason.
 
 use super::arrays::{put_bool, put_f64, put_f64_2d, speed_lists};
+use super::cli::args::CorArgs;
 use super::cli::commands::rigorous_row;
 use super::cli::input;
-use super::cor::cor_cases;
+use super::cli::law_runs;
+use super::cli::output::RigorousRow;
+use super::cor::{cor_args, per_list, put_params};
 use super::run::{compute_rows, py_error};
-use bwcl::models::ModelKind;
+use bwcl::engines::taylor::TaylorOptions;
 use bwcl::observables::decimal::{Rounding, outward};
 use inari::Interval;
 use pyo3::exceptions::PyValueError;
@@ -35,14 +38,27 @@ pub fn cor_rigorous<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let lists = speed_lists(None, v0_tokens);
-    let (a, cases) = cor_cases::<Interval>(argv, lists)?;
+    let a = cor_args(argv, &lists)?;
     if !a.engine.rigorous {
         return Err(PyValueError::new_err("not --rigorous: use bwcl.cor"));
     }
+    if let Some(law) = a.params.model.law() {
+        if a.digits.is_some() {
+            input::bouc_wen_only(a.params.model, "digits").map_err(py_error)?;
+        }
+        law_runs::check_cor_options(&a).map_err(py_error)?;
+        let opts = input::taylor_options(&a.engine).map_err(py_error)?;
+        let cases = per_list(&a, &lists, |p| input::law_cases::<Interval>(p, law))?;
+        let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
+            law_runs::rigorous_row(law, c, &opts, a.engine.time_limit)
+        })?;
+        return rows_dict(py, &a, &opts, rows, seconds, used);
+    }
+    let cases = per_list(&a, &lists, input::cases::<Interval>)?;
     if let Some(digits) = a.digits {
         return super::digits::cor_digits(py, &a, digits, cases, threads);
     }
-    let kind = ModelKind::from(a.params.model);
+    let kind = input::bouc_wen_only(a.params.model, "cor").map_err(py_error)?;
     let opts = input::taylor_options(&a.engine).map_err(py_error)?;
     let pieces = input::pieces(&a.engine);
     let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
@@ -57,11 +73,22 @@ pub fn cor_rigorous<'py>(
             a.engine.time_limit,
         )
     })?;
+    rows_dict(py, &a, &opts, rows, seconds, used)
+}
+
+/// The rows of `cor_rigorous` as the dict the Python side reads.
+fn rows_dict<'py>(
+    py: Python<'py>,
+    a: &CorArgs,
+    opts: &TaylorOptions,
+    rows: Vec<RigorousRow>,
+    seconds: f64,
+    used: usize,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("model", kind.name())?;
-    let flat = |f: &dyn Fn(&super::cli::output::RigorousRow) -> [f64; 2]| -> Vec<f64> {
-        rows.iter().flat_map(f).collect()
-    };
+    d.set_item("model", a.params.model.key())?;
+    let flat =
+        |f: &dyn Fn(&RigorousRow) -> [f64; 2]| -> Vec<f64> { rows.iter().flat_map(f).collect() };
     put_f64_2d(&d, "v0", flat(&|r| pair(r.v0)), 2)?;
     put_f64_2d(&d, "ts", flat(&|r| pair(r.ts)), 2)?;
     put_f64_2d(&d, "e", flat(&|r| pair(r.e)), 2)?;
@@ -82,18 +109,8 @@ pub fn cor_rigorous<'py>(
     if a.params.physical.is_some() {
         put_f64_2d(&d, "ts_seconds", flat(&|r| pair(r.ts_seconds.flatten())), 2)?;
     }
-    let params: Vec<f64> = rows
-        .iter()
-        .flat_map(|r| {
-            let p = &r.params;
-            [p.b, p.gamma, p.kappa, p.sigma, p.n, p.p]
-                .into_iter()
-                .flatten()
-                .collect::<Vec<f64>>()
-        })
-        .collect();
-    put_f64_2d(&d, "params", params, 12)?;
-    let text = |f: &dyn Fn(&super::cli::output::RigorousRow) -> Option<[f64; 2]>| {
+    put_params(&d, rows.iter().map(|r| &r.params).collect(), |x| x)?;
+    let text = |f: &dyn Fn(&RigorousRow) -> Option<[f64; 2]>| {
         rows.iter().map(|r| pair_text(f(r))).collect::<Vec<_>>()
     };
     d.set_item("v0_text", text(&|r| r.v0))?;

@@ -6,8 +6,13 @@ use super::arrays::{put_f64, put_f64_2d};
 use super::cli::args::{Command, TrajectoryArgs};
 use super::cli::commands::check_units;
 use super::cli::input;
+use super::cli::law_runs::with_law;
 use super::run::{compute, parse, py_error};
 use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::classical::{Law, LawModel};
+use bwcl::models::hunt_crossley::HuntCrossley;
+use bwcl::models::linear_maxwell::LinearMaxwell;
+use bwcl::models::scaling::Scales;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, Shc};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::trajectory::{Sample, Units, trajectory as samples};
@@ -69,8 +74,7 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     };
     let mut ts = Vec::with_capacity(points);
     let mut cols = Vec::with_capacity(points);
-    for i in 0..points {
-        let t = end * i as f64 / (points - 1) as f64;
+    for t in bwcl::observables::trajectory::sample_times(end, points) {
         let s = enc
             .flow
             .enclose(t)
@@ -106,25 +110,45 @@ pub fn trajectory<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let a = curve_args(&argv)?;
     check_units(&a).map_err(py_error)?;
-    let kind = ModelKind::from(a.params.model);
+    let law = a.params.model.law();
+    let kind = a.params.model.kind();
     let (points, t_end) = (a.points, a.t_end);
-    let names: Vec<&str> = match kind {
-        ModelKind::Shc => <Shc<f64> as CollisionModel<f64, 3>>::STATE_NAMES.to_vec(),
-        ModelKind::Maxwell => <Maxwell<f64> as CollisionModel<f64, 4>>::STATE_NAMES.to_vec(),
+    let names: Vec<&str> = match (law, kind) {
+        (Some(Law::LinearMaxwell), _) => {
+            <LinearMaxwell<f64> as CollisionModel<f64, 3>>::STATE_NAMES.to_vec()
+        }
+        (Some(_), _) => <HuntCrossley<f64> as CollisionModel<f64, 2>>::STATE_NAMES.to_vec(),
+        (_, Some(ModelKind::Maxwell)) => {
+            <Maxwell<f64> as CollisionModel<f64, 4>>::STATE_NAMES.to_vec()
+        }
+        _ => <Shc<f64> as CollisionModel<f64, 3>>::STATE_NAMES.to_vec(),
     };
     let n = names.len();
     let d = PyDict::new(py);
-    d.set_item("model", kind.name())?;
+    d.set_item("model", a.params.model.key())?;
     d.set_item("state_names", names)?;
     d.set_item("rigorous", a.engine.rigorous)?;
     let failed = |e: String| PyRuntimeError::new_err(e);
     if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine).map_err(py_error)?;
-        let case = input::single_case::<Interval>(&a.params).map_err(py_error)?;
-        let (ts, cols) = compute(py, threads, || match kind {
-            ModelKind::Shc => rigorous_curve(&Shc::new(case.params), &opts, t_end, points),
-            ModelKind::Maxwell => rigorous_curve(&Maxwell::new(case.params), &opts, t_end, points),
-        })?
+        let (ts, cols) = match (law, kind) {
+            (Some(law), _) => {
+                let case = input::single_law_case::<Interval>(&a.params, law).map_err(py_error)?;
+                let model = case.nd.model().map_err(failed)?;
+                compute(py, threads, || {
+                    with_law!(&model, |m| rigorous_curve(m, &opts, t_end, points))
+                })?
+            }
+            (_, kind) => {
+                let case = input::single_case::<Interval>(&a.params).map_err(py_error)?;
+                compute(py, threads, || match kind {
+                    Some(ModelKind::Maxwell) => {
+                        rigorous_curve(&Maxwell::new(case.params), &opts, t_end, points)
+                    }
+                    _ => rigorous_curve(&Shc::new(case.params), &opts, t_end, points),
+                })?
+            }
+        }
         .map_err(failed)?;
         put_f64(&d, "t", ts)?;
         let col = |j: usize| -> Vec<f64> { cols.iter().flat_map(|r| r[j]).collect() };
@@ -140,18 +164,33 @@ pub fn trajectory<'py>(
         d.set_item("note", None::<String>)?;
     } else {
         let opts = input::float_options(&a.engine).map_err(py_error)?;
-        let case = input::single_case::<f64>(&a.params).map_err(py_error)?;
-        let units = match (&case.scales, a.physical_units) {
+        let unit = |scales: &Option<Scales<f64>>| match (scales, a.physical_units) {
             (Some(s), true) => Units::Physical(s.clone()),
             _ => Units::Nondimensional,
         };
-        let (s, note) = compute(py, threads, || match kind {
-            ModelKind::Shc => float_curve(&Shc::new(case.params), &opts, t_end, points, &units),
-            ModelKind::Maxwell => {
-                float_curve(&Maxwell::new(case.params), &opts, t_end, points, &units)
+        let (units, curve) = match (law, kind) {
+            (Some(law), _) => {
+                let case = input::single_law_case::<f64>(&a.params, law).map_err(py_error)?;
+                let units = unit(&case.scales);
+                let model = case.nd.model().map_err(failed)?;
+                let c = compute(py, threads, || {
+                    with_law!(&model, |m| float_curve(m, &opts, t_end, points, &units))
+                })?;
+                (units, c)
             }
-        })?
-        .map_err(failed)?;
+            (_, kind) => {
+                let case = input::single_case::<f64>(&a.params).map_err(py_error)?;
+                let units = unit(&case.scales);
+                let c = compute(py, threads, || match kind {
+                    Some(ModelKind::Maxwell) => {
+                        float_curve(&Maxwell::new(case.params), &opts, t_end, points, &units)
+                    }
+                    _ => float_curve(&Shc::new(case.params), &opts, t_end, points, &units),
+                })?;
+                (units, c)
+            }
+        };
+        let (s, note) = curve.map_err(failed)?;
         put_f64(&d, "t", s.iter().map(|x| x.t).collect())?;
         put_f64_2d(
             &d,

@@ -19,6 +19,7 @@
 // (each test crate uses its own part of this module)
 #![allow(dead_code)]
 
+use rug::ops::Pow;
 use rug::{Float, Rational};
 use std::process::{Command, Output};
 
@@ -54,4 +55,61 @@ pub fn hunt_crossley_bracket(sigma: &Rational) -> (Rational, Rational) {
     assert!(g(&a) < 0u32 && g(&b) > 0u32, "the root is bracketed");
     let r = |x: Float| x.to_rational().unwrap() / sigma;
     (r(a), r(b))
+}
+
+/// The precision of the classical laws' closed forms below (error ≈ 10⁻⁵⁸).
+pub const CLOSED_BITS: u32 = 200;
+
+/// [x − 10⁻⁵⁰, x + 10⁻⁵⁰] as rationals, for x computed at [`CLOSED_BITS`].
+pub fn around(x: &Float) -> (Rational, Rational) {
+    let eps = Float::with_val(CLOSED_BITS, Float::parse("1e-50").unwrap());
+    (
+        Float::with_val(CLOSED_BITS, x - &eps)
+            .to_rational()
+            .unwrap(),
+        Float::with_val(CLOSED_BITS, x + &eps)
+            .to_rational()
+            .unwrap(),
+    )
+}
+
+/// Hertz's nondimensional contact time for the exponent n: with X_m = ((n+1)/2)^(1/(n+1)),
+/// T_s = 2 X_m B(1/(n+1), 1/2)/(n+1) (the Beta function through Γ).
+pub fn hertz_ts(n: &Float) -> Float {
+    let b = CLOSED_BITS;
+    let n1 = Float::with_val(b, n + 1u32);
+    let xm = Float::with_val(
+        b,
+        Float::with_val(b, &n1 / 2u32).pow(Float::with_val(b, 1u32 / &n1)),
+    );
+    let a = Float::with_val(b, 1u32 / &n1);
+    let half = Float::with_val(b, 0.5);
+    let beta = Float::with_val(b, a.clone().gamma() * half.clone().gamma())
+        / Float::with_val(b, a + half).gamma();
+    Float::with_val(b, xm * 2u32 * beta / n1)
+}
+
+/// Linear Kelvin–Voigt with ζ < 1 (src/models/kelvin_voigt.rs): ω = √(1 − ζ²),
+/// φ = atan2(2ζω, 1 − 2ζ²), T_s = (π − φ)/ω, e = e^(−ζT_s). Returns (T_s, e).
+pub fn kelvin_voigt_closed(z: &Float) -> (Float, Float) {
+    use rug::float::Constant;
+    let b = CLOSED_BITS;
+    let w = Float::with_val(b, 1u32 - Float::with_val(b, z * z)).sqrt();
+    let phi = Float::with_val(b, Float::with_val(b, z * &w) * 2u32)
+        .atan2(&Float::with_val(b, 1u32 - Float::with_val(b, z * z) * 2u32));
+    let ts = Float::with_val(b, Float::with_val(b, Constant::Pi) - phi) / &w;
+    let e = Float::with_val(b, -Float::with_val(b, z * &ts)).exp();
+    (ts, e)
+}
+
+/// Linear Maxwell with c̃ > 1/2 (src/models/linear_maxwell.rs): β = 1/(2c̃), ω = √(1 − β²),
+/// T_s = π/ω, e = e^(−βT_s). Returns (T_s, e).
+pub fn linear_maxwell_closed(c: &Float) -> (Float, Float) {
+    use rug::float::Constant;
+    let b = CLOSED_BITS;
+    let beta = Float::with_val(b, 1u32 / Float::with_val(b, c * 2u32));
+    let w = Float::with_val(b, 1u32 - Float::with_val(b, &beta * &beta)).sqrt();
+    let ts = Float::with_val(b, Constant::Pi) / &w;
+    let e = Float::with_val(b, -Float::with_val(b, &beta * &ts)).exp();
+    (ts, e)
 }

@@ -159,3 +159,48 @@ def test_compare_and_identify_take_the_laws(tmp_path):
         bwcl.compare(v0=v0, e=e, models="shc,coulomb")
     with pytest.raises(ValueError, match="no-tc|fix|Bouc"):
         bwcl.identify("hunt-crossley", v0=v0, e=e, error=0.01, fix={"kappa": 0.5})
+
+
+def test_cor_of_a_law_in_si_units_agrees_with_solve_ivp():
+    """bwcl.cor / cor_rigorous / trajectory with a law's physical parameters against SciPy on
+    the SI equation m δ̈ = −k δ^n − χ δ^n δ̇ (δ ≥ 0 the indentation, δ̇(0) = v0), to the
+    return δ = 0: t_s in seconds and e = −δ̇(t_s)/v0 (the scales are checked with them)."""
+    from scipy.integrate import solve_ivp
+
+    m, k, chi, n = 0.146, 1e9, 2e8, 1.5
+    phys = {"m": m, "k": k, "chi": chi, "n": n}
+    v0 = np.array([0.5, 1.0, 2.0])
+    r = bwcl.cor("hunt-crossley", physical=phys, v0=v0)
+    assert r.model == "hunt-crossley" and set(r.params) == {"sigma", "n"}
+    np.testing.assert_allclose(r.params["sigma"], chi * v0 / k, rtol=1e-15)
+    p = bwcl.cor_rigorous("hunt-crossley", physical=phys, v0=v0)
+    assert p.proved.all() and p.params["sigma"].shape == (3, 2)
+    for i, v in enumerate(v0):
+        def rhs(t, y):
+            d = max(y[0], 0.0)
+            return [y[1], -(k * d**n + chi * d**n * y[1]) / m]
+
+        back = lambda t, y: y[0]  # noqa: E731
+        back.terminal, back.direction = True, -1
+        t_c = (m * v**2 / k) ** (1 / (n + 1)) / v
+        s = solve_ivp(rhs, (0, 10 * t_c), [0.0, v], method="DOP853", rtol=1e-12, atol=1e-20,
+                      events=back, first_step=1e-4 * t_c, max_step=0.01 * t_c)
+        t_s, e = s.t_events[0][0], -s.y_events[0][0][1] / v
+        assert abs(r.e[i] - e) < 1e-8 and abs(r.ts_seconds[i] - t_s) < 1e-8 * t_s, (v, r.e[i], e)
+        assert p.e[i, 0] <= r.e[i] + 1e-9 and r.e[i] - 1e-9 <= p.e[i, 1]
+        assert p.ts_seconds[i, 0] - 1e-8 * t_s <= t_s <= p.ts_seconds[i, 1] + 1e-8 * t_s
+    tr = bwcl.trajectory("hunt-crossley", physical=phys, v0=1.0, physical_units=True, points=50)
+    assert tr.state_names == ("X", "V") and tr.units == "physical"
+    assert abs(tr.t[-1] - r.ts_seconds[1]) < 1e-12 and abs(tr.v[-1] - r.e[1]) < 1e-9
+    lm = bwcl.loop("linear-maxwell", nd={"c": 2}, rigorous=True, points=5)
+    assert lm.x.shape == (5, 2)
+    # the base family and the nondimensional set by name; Hooke takes none
+    b = bwcl.cor("hunt-crossley", base={"sigma_b": 0.25}, v0=2.0)
+    assert b.e[0] == bwcl.cor("hunt-crossley", nd="sigma=0.5").e[0]
+    assert bwcl.cor("hooke", nd={}).e[0] == pytest.approx(1.0, abs=1e-9)
+    with pytest.raises(ValueError, match="k = -1 must be > 0"):
+        bwcl.cor("kelvin-voigt", physical={"m": 1, "k": -1, "c": 1}, v0=1)
+    with pytest.raises(ValueError, match="fallback-bits is for the Bouc–Wen models"):
+        bwcl.cor_rigorous("hooke", nd={}, fallback_bits=128)
+    with pytest.raises(TypeError, match="by name"):
+        bwcl.cor("kelvin-voigt", nd=[0.3])
