@@ -334,9 +334,14 @@ mod tests {
     #[test]
     fn values_are_checked_as_written() {
         let bad = |law, src, text: &str| LawParams::<f64>::parse(law, src, text).unwrap_err().0;
+        // 1e-400 > 0 as written, but its double is 0: σ = χv0/k is refused as not finite
+        let tiny =
+            LawParams::<f64>::parse(Law::HuntCrossley, LawSource::Physical, "m=1,k=1e-400,chi=1")
+                .unwrap();
+        assert!(tiny.at(&1.0).unwrap_err().0.contains("not a finite number"));
         assert_eq!(
-            bad(Law::HuntCrossley, LawSource::Physical, "m=1,k=1e-400,chi=1"),
-            "k = 1e-400 must be > 0"
+            bad(Law::HuntCrossley, LawSource::Physical, "m=1,k=0,chi=1"),
+            "k = 0 must be > 0"
         );
         assert!(bad(Law::HuntCrossley, LawSource::Physical, "m=1,k=-0,chi=1").contains("> 0"));
         assert!(bad(Law::Hertz, LawSource::Nd, "n=0.999").contains("≥ 1"));

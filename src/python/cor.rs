@@ -8,7 +8,7 @@ use super::cli::commands::float_row;
 use super::cli::input;
 use super::cli::law_runs;
 use super::cli::output::RowParams;
-use super::run::{compute_rows, parse, py_error};
+use super::run::{compute, compute_rows, parse, py_error, stopped};
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -26,24 +26,30 @@ pub fn cor_args(argv: Vec<String>, lists: &Option<Vec<String>>) -> PyResult<CorA
     }
 }
 
-/// The validated cases of every --v0 list, in order (`make`: the cases of one list).
-pub fn per_list<C>(
+/// The validated cases of every --v0 list, in order (`make`: the cases of one list), built
+/// with the GIL released and Ctrl-C heard ([`compute`]: a million speeds take a second).
+pub fn per_list<C: Send>(
+    py: Python<'_>,
     a: &CorArgs,
     lists: &Option<Vec<String>>,
-    make: impl Fn(&ParamArgs) -> Result<Vec<C>, CliError>,
+    make: impl Fn(&ParamArgs) -> Result<Vec<C>, CliError> + Send + Sync,
 ) -> PyResult<Vec<C>> {
-    match lists {
-        None => make(&a.params).map_err(py_error),
+    let built = compute(py, Some(1), || match lists {
+        None => make(&a.params).map(Some),
         Some(lists) => {
             let mut cases = Vec::new();
             for text in lists {
+                if bwcl::engines::cancel::requested() {
+                    return Ok(None);
+                }
                 let mut p = a.params.clone();
                 p.v0 = Some(text.clone());
-                cases.extend(make(&p).map_err(py_error)?);
+                cases.extend(make(&p)?);
             }
-            Ok(cases)
+            Ok(Some(cases))
         }
-    }
+    })?;
+    built.map_err(py_error)?.ok_or_else(stopped)
 }
 
 /// The parameters of the rows: an (n, 6) array for a Bouc–Wen model (an (n, 12) one of
@@ -101,12 +107,12 @@ pub fn cor<'py>(
     let opts = input::float_options(&a.engine).map_err(py_error)?;
     let (rows, seconds, used) = match a.params.model.law() {
         Some(law) => {
-            let cases = per_list(&a, &lists, |p| input::law_cases::<f64>(p, law))?;
+            let cases = per_list(py, &a, &lists, |p| input::law_cases::<f64>(p, law))?;
             compute_rows(py, threads, &cases, |c| law_runs::float_row(law, c, &opts))?
         }
         None => {
             let kind = input::bouc_wen_only(a.params.model, "cor").map_err(py_error)?;
-            let cases = per_list(&a, &lists, input::cases::<f64>)?;
+            let cases = per_list(py, &a, &lists, input::cases::<f64>)?;
             compute_rows(py, threads, &cases, |c| float_row(kind, c, &opts))?
         }
     };

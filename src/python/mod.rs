@@ -40,6 +40,9 @@ use pyo3::prelude::*;
 /// The native part of the `bwcl` package (use the functions of `bwcl`, not these).
 #[pymodule]
 fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // NumPy's C API is loaded now, at import: loaded at a call's first array, a pending
+    // KeyboardInterrupt made the loading fail and the numpy crate panic
+    let _ = numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_function(wrap_pyfunction!(cor::cor, m)?)?;
     m.add_function(wrap_pyfunction!(rigorous::cor_rigorous, m)?)?;
     m.add_function(wrap_pyfunction!(trajectory::trajectory, m)?)?;

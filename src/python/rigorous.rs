@@ -48,13 +48,13 @@ pub fn cor_rigorous<'py>(
         }
         law_runs::check_cor_options(&a).map_err(py_error)?;
         let opts = input::taylor_options(&a.engine).map_err(py_error)?;
-        let cases = per_list(&a, &lists, |p| input::law_cases::<Interval>(p, law))?;
+        let cases = per_list(py, &a, &lists, |p| input::law_cases::<Interval>(p, law))?;
         let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
             law_runs::rigorous_row(law, c, &opts, a.engine.time_limit)
         })?;
         return rows_dict(py, &a, &opts, rows, seconds, used);
     }
-    let cases = per_list(&a, &lists, input::cases::<Interval>)?;
+    let cases = per_list(py, &a, &lists, input::cases::<Interval>)?;
     if let Some(digits) = a.digits {
         return super::digits::cor_digits(py, &a, digits, cases, threads);
     }

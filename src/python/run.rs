@@ -3,6 +3,7 @@
 
 use super::cli::args::{Cli, Command};
 use super::cli::{CliError, error_line, usage_message};
+use bwcl::engines::cancel::Request;
 use clap::Parser;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -10,6 +11,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// Most threads of one call's pool.
 pub const MAX_THREADS: usize = 1024;
+
+/// How often a running call looks for signals (Ctrl-C).
+const POLL: std::time::Duration = std::time::Duration::from_millis(10);
 
 /// A CLI error as a Python exception: bad input → `ValueError`, a computation that failed on
 /// valid input → `RuntimeError`; the message is the line the program prints after
@@ -62,7 +66,8 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
 
 /// Runs `f` with the GIL released, on a pool of `threads` threads (the global rayon pool for
 /// `None`); a panic (in `f` or in one of its rayon tasks, which rayon carries back here)
-/// becomes a `RuntimeError`.
+/// becomes a `RuntimeError`, and Ctrl-C a `KeyboardInterrupt` within a step of the engines
+/// (the computation stopped, nothing of it returned).
 pub fn compute<T, F>(py: Python<'_>, threads: Option<usize>, f: F) -> PyResult<T>
 where
     T: Send,
@@ -82,13 +87,34 @@ where
             )));
         }
     };
-    py.detach(|| {
+    // the computation on its own thread; this one (Python's, usually the main thread) polls
+    // for signals every 10 ms with the GIL released in between: on KeyboardInterrupt (or any
+    // exception a signal handler raises) every engine is asked to stop
+    // ([`bwcl::engines::cancel`]), the computation's end awaited and its result dropped
+    let run = || {
         catch_unwind(AssertUnwindSafe(|| match &pool {
             Some(p) => p.install(f),
             None => f(),
         }))
-    })
-    .map_err(|p| {
+    };
+    let (out, interrupted) = std::thread::scope(|s| {
+        let worker = s.spawn(run);
+        let mut interrupted: Option<(PyErr, Request)> = None;
+        while !worker.is_finished() {
+            py.detach(|| std::thread::sleep(POLL));
+            if interrupted.is_none()
+                && let Err(e) = py.check_signals()
+            {
+                interrupted = Some((e, Request::new()));
+            }
+        }
+        let out = worker.join().unwrap_or_else(Err);
+        (out, interrupted.map(|(e, _request)| e))
+    });
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    out.map_err(|p| {
         PyRuntimeError::new_err(format!(
             "bwcl: internal error (a bug, please report it): {}",
             panic_text(p.as_ref())
@@ -112,13 +138,26 @@ where
     use rayon::prelude::*;
     compute(py, threads, || {
         let start = std::time::Instant::now();
-        let rows: Vec<R> = cases.par_iter().map(&row).collect();
-        (
-            rows,
-            start.elapsed().as_secs_f64(),
-            rayon::current_num_threads(),
-        )
-    })
+        // once a stop is requested the cases left are not started
+        let rows: Option<Vec<R>> = cases
+            .par_iter()
+            .map(|c| (!bwcl::engines::cancel::requested()).then(|| row(c)))
+            .collect();
+        rows.map(|rows| {
+            (
+                rows,
+                start.elapsed().as_secs_f64(),
+                rayon::current_num_threads(),
+            )
+        })
+    })?
+    .ok_or_else(stopped)
+}
+
+/// The error of a call cut short by a stop another call requested (Ctrl-C during it): the
+/// call that was interrupted raises KeyboardInterrupt instead.
+pub fn stopped() -> PyErr {
+    PyRuntimeError::new_err("stopped: Ctrl-C interrupted a bwcl call while this one ran")
 }
 
 /// Panics inside a rayon task with the GIL released: the tests check that this raises

@@ -112,6 +112,11 @@ pub enum Dop853Error {
         /// The limit that was hit.
         steps: usize,
     },
+    /// A stop was requested ([`crate::engines::cancel`]) before the step from `t`.
+    Cancelled {
+        /// Time reached.
+        t: f64,
+    },
     /// The right-hand side returned a non-finite value at `t`, and shrinking the step did not help.
     NonFinite {
         /// Time of the last accepted state.
@@ -132,6 +137,7 @@ impl std::fmt::Display for Dop853Error {
                     "DOP853: more than {steps} steps needed, stopped at t = {t}"
                 )
             }
+            Dop853Error::Cancelled { t } => write!(f, "DOP853: cancelled at t = {t}"),
             Dop853Error::NonFinite { t } => {
                 write!(f, "DOP853: right-hand side not finite near t = {t}")
             }
@@ -432,12 +438,16 @@ where
     /// A trial whose `y_new` or `f(t_new, y_new)` is not finite is rejected with factor 0.2.
     /// Fails with [`Dop853Error::StepTooSmall`] when `|h| < 10 ulp(t)` (or
     /// [`Dop853Error::NonFinite`] if the last trial was not finite), and with
-    /// [`Dop853Error::TooManySteps`] after `max_steps` attempted steps.
+    /// [`Dop853Error::TooManySteps`] after `max_steps` attempted steps; with
+    /// [`Dop853Error::Cancelled`] when a stop is requested ([`crate::engines::cancel`]).
     pub fn step(&mut self) -> Result<bool, Dop853Error> {
         if self.t == self.t_bound {
             return Ok(false);
         }
         let t = self.t;
+        if crate::engines::cancel::requested() {
+            return Err(Dop853Error::Cancelled { t });
+        }
         let toward = if self.direction > 0.0 {
             t.next_up()
         } else {

@@ -111,10 +111,13 @@ pub const DEADLINE: &str = "the time budget ran out";
 pub const NO_SEPARATION: &str = "no separation before the horizon";
 
 impl TaylorOptions {
-    /// Whether [`TaylorOptions::deadline`] has passed.
+    /// Whether [`TaylorOptions::deadline`] has passed, or a stop is requested
+    /// ([`crate::engines::cancel`]: the run then stops as at its deadline).
     pub fn out_of_time(&self) -> bool {
-        self.deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
+        crate::engines::cancel::requested()
+            || self
+                .deadline
+                .is_some_and(|d| std::time::Instant::now() >= d)
     }
 }
 
