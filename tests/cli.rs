@@ -869,6 +869,9 @@ fn a_fit_from_an_extreme_start_is_bounded() {
             init,
             "--starts",
             "0",
+            // 3 rows fit 3 free parameters (fewer rows than free parameters are refused)
+            "--fix",
+            "kappa=0.5,n=1,p=1.5",
         ],
         60,
     )

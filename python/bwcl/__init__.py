@@ -196,8 +196,23 @@ def _num(x: Any, what: str) -> str:
     return _token(x, what, False)
 
 
+def _plain(x: Any, what: str) -> Any:
+    """Refuses what would be read as something else: bytes (b'1' iterates as 49), a masked
+    array with masked entries (the mask would be ignored); an unmasked one is its data."""
+    if isinstance(x, (bytes, bytearray, memoryview)):
+        raise TypeError(f"{what}: expected numbers or a decimal string, got {type(x).__name__} "
+                        f"{bytes(x)[:40]!r}")
+    if isinstance(x, np.ma.MaskedArray):
+        if np.ma.is_masked(x):
+            raise ValueError(f"{what}: a masked array with masked entries; give the values to "
+                             "use (x.compressed(), or x.filled(value))")
+        return np.ma.getdata(x)
+    return x
+
+
 def _speeds_array(v0: Any) -> Optional[np.ndarray]:
     """v0 as a 1-D float64 array when it is numeric, else None."""
+    v0 = _plain(v0, "v0")
     if isinstance(v0, str):
         return None
     if isinstance(v0, (list, tuple)) and any(isinstance(x, (str, tuple)) for x in v0):
@@ -216,6 +231,7 @@ def _speeds_array(v0: Any) -> Optional[np.ndarray]:
 
 def _speed_tokens(v0: Any, ranges: bool) -> list:
     """v0 as the CLI's tokens: a string is the CLI's list; else one token per item."""
+    v0 = _plain(v0, "v0")
     if isinstance(v0, str):
         return v0.split(",")
     items = v0.tolist() if isinstance(v0, np.ndarray) else v0
@@ -233,20 +249,24 @@ def _speed_tokens(v0: Any, ranges: bool) -> list:
 
 
 def _threads(threads: Any) -> Optional[int]:
-    if threads is None:
+    # None and −1 (SciPy's and joblib's "all cores"): the global pool, one thread per core
+    if threads is None or (isinstance(threads, numbers.Integral)
+                           and not isinstance(threads, bool) and int(threads) == -1):
         return None
     if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or not (
         1 <= int(threads) <= _MAX_THREADS
     ):
-        raise ValueError(f"threads = {threads!r:.40} must be a whole number in 1..={_MAX_THREADS}")
+        raise ValueError(
+            f"threads = {threads!r:.40} must be a whole number in 1..={_MAX_THREADS}, or -1 (all cores)"
+        )
     return int(threads)
 
 
 def _float_engine(rtol: Any, atol: Any, max_step: Any, horizon: Any) -> list:
     argv = [f"--horizon={_num(horizon, 'horizon')}"]
     for name, x in (("rtol", rtol), ("atol", atol), ("max-step", max_step)):
-        if x is not None:
-            argv.append(f"--{name}={_num(x, name.replace('-', '_'))}")
+        # (None is refused by _num: a setting given is a number, never a silent default)
+        argv.append(f"--{name}={_num(x, name.replace('-', '_'))}")
     return argv
 
 
@@ -783,7 +803,7 @@ def _data_args(data: Any, v0: Any, e: Any) -> Tuple[str, Optional[np.ndarray], O
         raise ValueError("give data (a CSV file with the header v0,e) or both arrays v0 and e")
     arrays = []
     for name, a in (("v0", v0), ("e", e)):
-        a = np.asarray(a)
+        a = np.asarray(_plain(a, name))
         if a.ndim != 1:
             raise ValueError(f"{name} must be a 1-D array, got shape {a.shape}")
         if a.dtype.kind not in "fiu":

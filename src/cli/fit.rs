@@ -155,6 +155,13 @@ pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
             "--starts 0 needs --init (there would be nothing to start from)".into(),
         ));
     }
+    if a.p1 && kind == ModelKind::Shc {
+        return Err(CliError::Input(
+            "--p1 searches the maxwell model's isolated p = 1; the shc model's p ≥ 1 is one \
+             interval (fix it with --fix p=1)"
+                .into(),
+        ));
+    }
     match (a.p1, kind, initial.first()) {
         (true, _, Some(p)) if p.p != 1.0 => {
             return Err(CliError::Input(format!(
@@ -187,6 +194,29 @@ pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
             .map_err(|e| CliError::Input(format!("--init: {e}")))?;
     }
     Ok(opts)
+}
+
+/// A fit needs at least as many data rows as free parameters: fewer leave P* undetermined
+/// (a family of exact fits), refused as bad input.
+pub(crate) fn check_determined(
+    kind: ModelKind,
+    opts: &FitOptions,
+    data: &CorData,
+) -> Result<(), CliError> {
+    let free = opts
+        .space_map(kind)
+        .map_err(CliError::Input)?
+        .space
+        .free()
+        .len();
+    if data.len() < free {
+        return Err(CliError::Input(format!(
+            "underdetermined: {} data row(s) for {free} free parameters (fix some with --fix, or \
+             give more rows)",
+            data.len()
+        )));
+    }
+    Ok(())
 }
 
 /// The space of --fix and --bounds (`None` without either).
@@ -411,6 +441,7 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
     let data = read_data(&a.data)?;
     let mut opts = fit_options(a)?;
     opts.weights = Some(search_weights(&data, &a.search)?);
+    check_determined(kind, &opts, &data)?;
     let n_starts = (opts.starts + opts.initial.len()) as u64;
     let budget = opts.max_iter * (1 + opts.restarts as u64);
     let bar = progress_bar(n_starts * budget);

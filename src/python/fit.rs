@@ -111,6 +111,7 @@ pub fn fit<'py>(
     let data = data_of(&a.data, v0, e)?;
     let mut opts = fit_options(&a).map_err(py_error)?;
     opts.weights = Some(search_weights(&data, &a.search).map_err(py_error)?);
+    super::cli::fit::check_determined(kind, &opts, &data).map_err(py_error)?;
     let n_starts = (opts.starts + opts.initial.len()) as u64;
     let total = n_starts * opts.max_iter * (1 + opts.restarts as u64);
     let raised: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));

@@ -146,3 +146,29 @@ def test_a_panic_is_a_python_exception():
             bwcl._bwcl.panic_for_test(threads)
     # and the interpreter goes on
     assert bwcl.cor("shc", base=DSS, v0=1).ok.all()
+
+
+def test_inputs_read_as_something_else_are_refused():
+    """Issue #34: bytes (b'1' iterated as the speed 49), a masked array's mask, None for a
+    setting, SciPy's threads=-1, an underdetermined fit, --p1 where it means nothing."""
+    with pytest.raises(TypeError, match="bytes"):
+        bwcl.cor("shc", base=DSS, v0=b"1")
+    with pytest.raises(TypeError, match="bytearray"):
+        bwcl.cor_rigorous("shc", base=DSS, v0=bytearray(b"1"))
+    masked = np.ma.masked_array([0.5, 1.0, 2.0], mask=[False, True, False])
+    with pytest.raises(ValueError, match="masked"):
+        bwcl.cor("shc", base=DSS, v0=masked)
+    with pytest.raises(ValueError, match="masked"):
+        bwcl.cost("shc", base=DSS, v0=masked, e=[0.9, 0.8, 0.7])
+    # a masked array without masked entries is its data
+    unmasked = np.ma.masked_array([0.5, 2.0], mask=False)
+    assert bwcl.cor("shc", base=DSS, v0=unmasked).e.tolist() == bwcl.cor(
+        "shc", base=DSS, v0=[0.5, 2.0]).e.tolist()
+    for kw in ("rtol", "atol", "max_step"):
+        with pytest.raises(TypeError, match=kw):
+            bwcl.cor("shc", base=DSS, v0=1, **{kw: None})
+    assert bwcl.cor("shc", base=DSS, v0=[1, 2], threads=-1).e.shape == (2,)
+    with pytest.raises(ValueError, match="underdetermined"):
+        bwcl.fit("shc", v0=[1.0], e=[0.8])
+    with pytest.raises(ValueError, match="--p1"):
+        bwcl.fit("shc", DATA, p1=True)
