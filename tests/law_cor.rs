@@ -277,6 +277,47 @@ fn json_names_the_laws_parameters() {
     let c = v[0]["params"]["c"].as_array().unwrap();
     assert!(c[0].as_f64().unwrap() <= 2.0 && 2.0 <= c[1].as_f64().unwrap());
     assert!(v[0]["ts_seconds"].is_array());
+    // the printed bounds of ζ = c/(2√(mk)) hold it, rounded outward: lo² ≤ c²/(4mk) ≤ hi²,
+    // exact rationals (the decimals as printed in the JSON text)
+    for c in ["0.3", "0.7", "0.1", "1.1", "0.9", "2.5"] {
+        let [lo, hi] = printed_zeta(&["--physical", &format!("m=3,k=7,c={c}"), "--v0", "1"]);
+        let cc = parse_rational(c).unwrap();
+        let z2 = Rational::from(&cc * &cc) / 84u32;
+        assert!(
+            Rational::from(&lo * &lo) <= z2 && z2 <= Rational::from(&hi * &hi),
+            "c = {c}: [{lo}, {hi}]"
+        );
+    }
+    // a decimal just above the double nearest to it: that double's shortest decimal, "0.1",
+    // lies below what was written, so an upper bound printed so would exclude it
+    let written = "0.10000000000000000001";
+    let [lo, hi] = printed_zeta(&["--nd", &format!("zeta={written}")]);
+    let w = parse_rational(written).unwrap();
+    assert!(lo <= w && w <= hi, "[{lo}, {hi}]");
+}
+
+/// The bounds of ζ as printed by `cor --model kelvin-voigt <source> --rigorous --format json`,
+/// read from the text as exact rationals.
+fn printed_zeta(source: &[&str]) -> [Rational; 2] {
+    let mut a = vec![
+        "cor",
+        "--model",
+        "kelvin-voigt",
+        "--rigorous",
+        "--format",
+        "json",
+    ];
+    a.extend_from_slice(source);
+    let o = bwcl(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let at = text.find("\"zeta\": [").expect("zeta") + "\"zeta\": [".len();
+    let end = at + text[at..].find(']').unwrap();
+    let b: Vec<Rational> = text[at..end]
+        .split(',')
+        .map(|x| parse_rational(x.trim()).unwrap())
+        .collect();
+    [b[0].clone(), b[1].clone()]
 }
 
 /// Bad input for a law: one line naming it, exit code 2, nothing on stdout.

@@ -82,30 +82,17 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let opts = input::taylor_options(&a.engine)?;
         let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
         let cases = input::cases::<Interval>(&a.params)?;
-        let start = std::time::Instant::now();
-        let bar = super::progress::Progress::cases(
-            "cor --rigorous",
-            cases.len(),
-            input::time_limit(a.engine.time_limit),
-        );
-        let rows: Vec<RigorousRow> = cases
-            .par_iter()
-            .map(|c| {
-                let row = rigorous_row(
-                    kind,
-                    c,
-                    &opts,
-                    input::pieces(&a.engine),
-                    a.sensitivities,
-                    &fallback,
-                    a.engine.time_limit,
-                );
-                bar.inc();
-                row
-            })
-            .collect();
-        bar.finish();
-        let elapsed = start.elapsed();
+        let (rows, elapsed) = prove_rows(&cases, a.engine.time_limit, |c| {
+            rigorous_row(
+                kind,
+                c,
+                &opts,
+                input::pieces(&a.engine),
+                a.sensitivities,
+                &fallback,
+                a.engine.time_limit,
+            )
+        });
         let failed = rows.iter().filter(|r| !r.proved).count();
         // how each range was split and how tight its hull is (in the JSON output as "range")
         if a.format == super::args::Format::Table {
@@ -187,6 +174,31 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         "bwcl: {failed} of {total} case(s) {what} (the reason is in the output){kept}"
     ));
     Ok(EXIT_FAILED)
+}
+
+/// The rigorous rows of `cor`'s cases, in parallel, with a progress bar on a terminal (the
+/// budget `time_limit` shown): the rows and the time they took.
+pub(crate) fn prove_rows<C: Sync>(
+    cases: &[C],
+    time_limit: Option<f64>,
+    row: impl Fn(&C) -> RigorousRow + Sync + Send,
+) -> (Vec<RigorousRow>, std::time::Duration) {
+    let start = std::time::Instant::now();
+    let bar = super::progress::Progress::cases(
+        "cor --rigorous",
+        cases.len(),
+        input::time_limit(time_limit),
+    );
+    let rows = cases
+        .par_iter()
+        .map(|c| {
+            let r = row(c);
+            bar.inc();
+            r
+        })
+        .collect();
+    bar.finish();
+    (rows, start.elapsed())
 }
 
 /// The six parameters of a set for the JSON output (also used by `fit`).

@@ -76,14 +76,8 @@ pub fn law_cases<R: Real>(p: &ParamArgs, law: Law) -> Result<Vec<LawCase<R>>, Cl
             ));
         }
     };
-    let given = LawParams::<R>::parse(law, source, text).map_err(|e| {
-        let pairs: Vec<(&str, &str)> = text
-            .split(',')
-            .filter_map(|item| item.split_once('='))
-            .map(|(k, v)| (k.trim(), v.trim()))
-            .collect();
-        input_error::<R>(opt, text, &pairs, e)
-    })?;
+    let given =
+        LawParams::<R>::parse(law, source, text).map_err(|e| keyed_error::<R>(opt, text, e))?;
     if source == LawSource::Nd {
         return Ok(vec![LawCase {
             v0: None,
@@ -186,14 +180,8 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             })
             .collect()
     } else if let Some(text) = &p.physical {
-        let phys = PhysicalParams::<R>::parse(kind, text).map_err(|e| {
-            let pairs: Vec<(&str, &str)> = text
-                .split(',')
-                .filter_map(|item| item.split_once('='))
-                .map(|(k, v)| (k.trim(), v.trim()))
-                .collect();
-            input_error::<R>("--physical", text, &pairs, e)
-        })?;
+        let phys = PhysicalParams::<R>::parse(kind, text)
+            .map_err(|e| keyed_error::<R>("--physical", text, e))?;
         let speeds = speeds::<R>(v0_text)?;
         speeds
             .into_iter()
@@ -263,6 +251,16 @@ pub fn nd_error<R: Real>(opt: &str, text: &str, e: ParamError) -> CliError {
         .iter()
         .copied()
         .zip(text.split(',').map(str::trim))
+        .collect();
+    input_error::<R>(opt, text, &pairs, e)
+}
+
+/// A parameter error of an option written "key=value,…" (`text`), each value named by its key.
+fn keyed_error<R: Real>(opt: &str, text: &str, e: ParamError) -> CliError {
+    let pairs: Vec<(&str, &str)> = text
+        .split(',')
+        .filter_map(|item| item.split_once('='))
+        .map(|(k, v)| (k.trim(), v.trim()))
         .collect();
     input_error::<R>(opt, text, &pairs, e)
 }

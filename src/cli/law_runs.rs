@@ -8,7 +8,9 @@
 
 use super::CliError;
 use super::args::{CorArgs, TrajectoryArgs};
-use super::commands::{Csv, Curve, float_curve, rigorous_curve, settle_float, settle_rigorous};
+use super::commands::{
+    Csv, Curve, float_curve, prove_rows, rigorous_curve, settle_float, settle_rigorous,
+};
 use super::input::{self, LawCase};
 use super::output::{FloatRow, RigorousRow, RowParams, bounds};
 use bwcl::engines::taylor::TaylorOptions;
@@ -49,20 +51,14 @@ pub fn check_cor_options(a: &CorArgs) -> Result<(), CliError> {
 }
 
 /// The nondimensional values of a case, by name, for the row.
-fn named<T>(p: &LawParams<Interval>, f: impl Fn(Interval) -> T) -> RowParams<T> {
+fn named<R: bwcl::arith::Real, T>(p: &LawParams<R>, f: impl Fn(R) -> T) -> RowParams<T> {
     RowParams::Law(p.named().into_iter().map(|(k, v)| (k, f(v))).collect())
 }
 
 /// T_s and e of one case on the float engine.
 pub fn float_row(law: Law, c: &LawCase<f64>, opts: &FloatOptions) -> FloatRow {
     let t_c = c.scales.as_ref().map(|s| s.t_c);
-    let mut row = FloatRow::new(
-        law.key(),
-        c.v0,
-        t_c,
-        opts.horizon,
-        RowParams::Law(c.nd.named().into_iter().collect()),
-    );
+    let mut row = FloatRow::new(law.key(), c.v0, t_c, opts.horizon, named(&c.nd, |x| x));
     match c.nd.model() {
         Ok(model) => settle_float(
             &mut row,
@@ -110,22 +106,9 @@ pub fn cor(
     if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
         let cases = input::law_cases::<Interval>(&a.params, law)?;
-        let start = std::time::Instant::now();
-        let bar = super::progress::Progress::cases(
-            "cor --rigorous",
-            cases.len(),
-            input::time_limit(a.engine.time_limit),
-        );
-        let rows: Vec<RigorousRow> = cases
-            .par_iter()
-            .map(|c| {
-                let row = rigorous_row(law, c, &opts, a.engine.time_limit);
-                bar.inc();
-                row
-            })
-            .collect();
-        bar.finish();
-        let elapsed = start.elapsed();
+        let (rows, elapsed) = prove_rows(&cases, a.engine.time_limit, |c| {
+            rigorous_row(law, c, &opts, a.engine.time_limit)
+        });
         let failed = rows.iter().filter(|r| !r.proved).count();
         Ok((
             super::output::rigorous_cor(&rows, a.format)?,

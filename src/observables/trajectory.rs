@@ -40,8 +40,9 @@ impl Units {
     }
 }
 
-/// `points` (at least 2) uniform times on [0, end], the last exactly `end` (end·i/(points − 1)
-/// may round past it, and a sample past the integration's end would be lost).
+/// `points` (at least 2) uniform times on [0, end], the last exactly `end`: end·i/(points − 1)
+/// may round past it (a sample past the integration's end was lost) or short of it; for
+/// i < points − 1 it stays below `end` (i/(points − 1) ≤ 1 − 1/(points − 1)).
 pub fn sample_times(end: f64, points: usize) -> Vec<f64> {
     let last = points.max(2) - 1;
     (0..=last)
@@ -49,7 +50,7 @@ pub fn sample_times(end: f64, points: usize) -> Vec<f64> {
             if i == last {
                 end
             } else {
-                (end * i as f64 / last as f64).min(end)
+                end * i as f64 / last as f64
             }
         })
         .collect()
@@ -151,5 +152,9 @@ mod tests {
         let g = sample_times(end, 50);
         assert_eq!((g.len(), g[0], g[49]), (50, 0.0, end));
         assert!(g.windows(2).all(|w| w[0] < w[1]));
+        // and one where it rounds below the end
+        let end = 1.4302060167127721;
+        assert!(end * 49.0 / 49.0 < end);
+        assert_eq!(sample_times(end, 50)[49], end);
     }
 }

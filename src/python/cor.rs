@@ -34,7 +34,7 @@ pub fn per_list<C: Send>(
     lists: &Option<Vec<String>>,
     make: impl Fn(&ParamArgs) -> Result<Vec<C>, CliError> + Send + Sync,
 ) -> PyResult<Vec<C>> {
-    let built = compute(py, Some(1), || match lists {
+    let built = compute(py, None, || match lists {
         None => make(&a.params).map(Some),
         Some(lists) => {
             let mut cases = Vec::new();

@@ -8,6 +8,7 @@ use clap::Parser;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Condvar, Mutex, PoisonError};
 
 /// Most threads of one call's pool.
 pub const MAX_THREADS: usize = 1024;
@@ -87,21 +88,34 @@ where
             )));
         }
     };
-    // the computation on its own thread; this one (Python's, usually the main thread) polls
-    // for signals every 10 ms with the GIL released in between: on KeyboardInterrupt (or any
-    // exception a signal handler raises) every engine is asked to stop
-    // ([`bwcl::engines::cancel`]), the computation's end awaited and its result dropped
+    // the computation on its own thread; this one (Python's, usually the main thread) waits
+    // for its end with the GIL released, looking for signals every 10 ms meanwhile (a call
+    // that ends sooner returns at once): on KeyboardInterrupt (or any exception a signal
+    // handler raises) every engine is asked to stop ([`bwcl::engines::cancel`]), the
+    // computation's end awaited and its result dropped
+    let ended = (Mutex::new(false), Condvar::new());
     let run = || {
-        catch_unwind(AssertUnwindSafe(|| match &pool {
+        let out = catch_unwind(AssertUnwindSafe(|| match &pool {
             Some(p) => p.install(f),
             None => f(),
-        }))
+        }));
+        *ended.0.lock().unwrap_or_else(PoisonError::into_inner) = true;
+        ended.1.notify_all();
+        out
+    };
+    // whether the computation ended, waiting for it at most POLL
+    let wait = || {
+        let done = ended.0.lock().unwrap_or_else(PoisonError::into_inner);
+        let (done, _) = ended
+            .1
+            .wait_timeout_while(done, POLL, |d| !*d)
+            .unwrap_or_else(PoisonError::into_inner);
+        *done
     };
     let (out, interrupted) = std::thread::scope(|s| {
         let worker = s.spawn(run);
         let mut interrupted: Option<(PyErr, Request)> = None;
-        while !worker.is_finished() {
-            py.detach(|| std::thread::sleep(POLL));
+        while !py.detach(wait) {
             if interrupted.is_none()
                 && let Err(e) = py.check_signals()
             {
