@@ -7,7 +7,7 @@
 //! compare with SciPy's `solve_ivp(method="DOP853")`, see `benches/scipy_side_by_side.py`)
 //! and the width of the rigorous e enclosure. `jet/*`: one order-16 jet on one repeated box
 //! and on varying boxes (see [`jet`]). Run with
-//! `cargo bench --bench cor`; the float/rigorous ratio is read from criterion's medians.
+//! `cargo bench --features bench --bench cor`; the float/rigorous ratio is read from criterion's medians.
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -23,7 +23,7 @@ within one run), so the two sides are timed in ROUNDS interleaved rounds per cas
 SciPy solve_ivp call right beside one bwcl call, and each round gives its own ratios
 t_scipy / t_bwcl and t_scipy / t_wall. The columns are the medians over the rounds: t_scipy,
 t_bwcl, t_wall, and the ratios (the medians of the per-round ratios, so that a slow spell of
-the machine slows both sides of the ratios it enters). `cargo run --release --example results`
+the machine slows both sides of the ratios it enters). `cargo run --release --features bench --example results`
 (benches/generator/results.rs) runs this script with --json and adds an in-process bwcl time
 next to it.
 

@@ -4,7 +4,7 @@
 //! around it (`window/*_box1e-8`): the bwcl side of the kv comparison (benches/peers/run.py,
 //! whose interleaved rounds give the numbers in benches/RESULTS.md). The field is recorded
 //! once, outside the timed loop. Each case prints its steps and widths once. Run with
-//! `cargo bench --bench window`.
+//! `cargo bench --features bench --bench window`.
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -2,9 +2,9 @@
 base sets P* = (B_b, Γ_b, κ, σ_b, n, p) around the paper's SHC DSS set, at several impact
 speeds, mapped over the cluster in chunks of base sets.
 
-Each task calls ``bwcl.cor`` once per base set of its chunk (all speeds in one call, the
-speeds in parallel inside the worker when it has threads); the results are NumPy arrays,
-gathered into an (n_sets, n_speeds) matrix. The same code runs on a real cluster: give the
+Each task calls ``bwcl.cor`` once for its whole chunk: the chunk's (k, 6) array of base sets
+against the speeds gives a (k, n_speeds) array (the k·n_speeds cases in parallel inside the
+worker when it has threads); the chunks are gathered into an (n_sets, n_speeds) matrix. The same code runs on a real cluster: give the
 scheduler's address instead of starting a LocalCluster.
 
     python examples/dask_sweep.py                          # LocalCluster, 2 worker processes
@@ -43,10 +43,7 @@ def grid(n_sets: int, seed: int = 0) -> np.ndarray:
 def cor_chunk(model: str, bases: np.ndarray, v0: np.ndarray, threads: int = 1) -> np.ndarray:
     """e for every base set of the chunk (rows) at every speed (columns): NaN where a case
     could not be integrated."""
-    out = np.empty((len(bases), len(v0)))
-    for i, b in enumerate(bases):
-        out[i] = bwcl.cor(model, base=b, v0=v0, threads=threads).e
-    return out
+    return bwcl.cor(model, base=bases, v0=v0, threads=threads).e
 
 
 def sweep(client, model: str, bases: np.ndarray, v0: np.ndarray, chunk: int) -> np.ndarray:

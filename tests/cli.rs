@@ -981,3 +981,53 @@ fn a_range_reports_its_split_with_inner_bounds_printed_inward() {
         "{note}"
     );
 }
+
+/// `--out` on the commands that print a report (issue #34): the report goes to the file, the
+/// same bytes as on stdout, nothing on stdout; a directory that does not exist is refused
+/// before any work (exit 2, nothing written).
+#[test]
+fn reports_go_to_out_files() {
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper_repro/data/synthetic_dss.csv"
+    );
+    let cases: [&[&str]; 4] = [
+        &["cost", "--model", "shc", "--base", DSS, "--data", data],
+        &[
+            "prove", "monotone", "--model", "shc", "--base", DSS, "--v0", "0.5..0.6",
+        ],
+        &["classical", "--law", "hertz", "--n", "1.5"],
+        &["fit", "--model", "hunt-crossley", "--data", data],
+    ];
+    for (k, args) in cases.iter().enumerate() {
+        let plain = bwcl(args);
+        assert_eq!(plain.status.code(), Some(0), "{args:?}: {}", stderr(&plain));
+        let out = scratch(&format!("report-{k}.txt"));
+        let mut with: Vec<&str> = args.to_vec();
+        let path = out.to_str().unwrap().to_string();
+        with.extend(["--out", &path]);
+        let o = bwcl(&with);
+        assert_eq!(o.status.code(), Some(0), "{with:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{with:?}");
+        let written = std::fs::read(&out).unwrap();
+        // the reports name their run time: compare them without it
+        let strip = |b: &[u8]| {
+            String::from_utf8_lossy(b)
+                .lines()
+                .filter(|l| {
+                    let timed = l
+                        .match_indices(" s")
+                        .any(|(i, _)| l[..i].ends_with(|c: char| c.is_ascii_digit()));
+                    !timed && !l.contains("seconds")
+                })
+                .map(str::to_string)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(strip(&written), strip(&plain.stdout), "{with:?}");
+        std::fs::remove_file(&out).unwrap();
+        let mut bad: Vec<&str> = args.to_vec();
+        bad.extend(["--out", "/nonexistent-dir/r.txt"]);
+        let msg = assert_bad_input(&bad);
+        assert!(msg.contains("out"), "{msg}");
+    }
+}

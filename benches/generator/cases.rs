@@ -4,8 +4,8 @@
 //! (issue #32): run it on both builds and diff (`--compare A.tsv B.tsv`).
 //!
 //! ```text
-//! cargo run --release --example cases -- [--reps N] > after.tsv
-//! cargo run --release --example cases -- --compare before.tsv after.tsv
+//! cargo run --release --features bench --example cases -- [--reps N] > after.tsv
+//! cargo run --release --features bench --example cases -- --compare before.tsv after.tsv
 //! ```
 
 use std::hint::black_box;

@@ -3,7 +3,7 @@
 //! interleaved, the median of `--reps` runs each.
 //!
 //! ```text
-//! cargo run --release --example classical -- [--reps 21]
+//! cargo run --release --features bench --example classical -- [--reps 21]
 //! ```
 
 use bwcl::engines::taylor::TaylorOptions;

@@ -7,7 +7,7 @@
 //! 3. where 2 failed for a reason precision may remove, through the precision fallback
 //!    ([`bwcl::observables::precision::decide`]: 128, 192, 256 bits, `SECONDS` per rung).
 //!
-//! `cargo run --release --example fallback` prints Markdown for benches/RESULTS.md. The spread
+//! `cargo run --release --features bench --example fallback` prints Markdown for benches/RESULTS.md. The spread
 //! is deterministic (a fixed xorshift): N cases per model (env `N`, default 60), parameters
 //! written as 3-digit decimals so that every precision encloses the same text:
 //! B log-uniform on [10⁻³, 10], Γ = g·B with g uniform on (−0.99, 0.99), κ on [0.01, 0.99],
@@ -161,7 +161,7 @@ fn main() {
         .map(|(k, t, _)| run(*k, t, &budget))
         .collect();
     println!(
-        "`cargo run --release --example fallback` (benches/generator/fallback.rs), N = {n} per \
+        "`cargo run --release --features bench --example fallback` (benches/generator/fallback.rs), N = {n} per \
          model, {seconds} s per rung, 2 threads; total {:.0} s.\n",
         start.elapsed().as_secs_f64()
     );

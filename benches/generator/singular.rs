@@ -6,7 +6,7 @@
 //! Three settings, interleaved: the singular step off, on without the start step
 //! ([`TaylorOptions::singular_start`] off: the crossings only), and on (crossings and start).
 //!
-//! `cargo run --release --example singular` prints a Markdown table (pieces, widths, times,
+//! `cargo run --release --features bench --example singular` prints a Markdown table (pieces, widths, times,
 //! ratios) for benches/RESULTS.md.
 
 use bwcl::arith::Real;

@@ -92,7 +92,7 @@ def build_kv(kv_dir, out_dir):
 
 
 def build_bwcl(target):
-    argv = ["cargo", "build", "--release", "--example", "window_bwcl"]
+    argv = ["cargo", "build", "--release", "--features", "bench", "--example", "window_bwcl"]
     print("+", " ".join(argv), flush=True)
     subprocess.run(argv, check=True, cwd=REPO, env=dict(os.environ, CARGO_TARGET_DIR=target))
     return os.path.join(target, "release", "examples", "window_bwcl")

@@ -53,7 +53,7 @@ from typing import Any, Callable, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _bwcl
+from ._native import native as _bwcl
 
 __version__ = _bwcl.__version__
 
@@ -85,15 +85,40 @@ __all__ = [
     "FallbackRun",
     "NotProvedError",
     "TABLE1",
+    "Table1Set",
+    "Sensitivity",
+    "band",
+    "BandResult",
+    "prove_monotone",
+    "MonotoneResult",
+    "plot",
 ]
 
+class Table1Set(NamedTuple):
+    """One base set of the paper's Table 1: ``model`` and ``base`` = P* = (B_b, Γ_b, κ, σ_b,
+    n, p) as numbers (each the double nearest the printed decimal; :func:`cor_rigorous`
+    encloses the decimal itself, as it encloses every float by its ``repr``); ``text`` is the
+    row as printed (the CLI's ``--base``), ``named`` the values by name."""
+
+    model: str
+    base: Tuple[float, float, float, float, float, float]
+
+    @property
+    def text(self) -> str:
+        return ",".join(repr(x) if x != int(x) else str(int(x)) for x in self.base)
+
+    @property
+    def named(self) -> dict:
+        return dict(zip(("B_b", "Gamma_b", "kappa", "sigma_b", "n", "p"), self.base))
+
+
 #: The paper's Table 1 (tab:param): the base sets P* = (B_b, Γ_b, κ, σ_b, n, p) identified from
-#: the DSS and DSA data, as (model, text exactly as printed).
+#: the DSS and DSA data, as ``Table1Set(model, base)``: ``model, base = TABLE1["SHC DSS"]``.
 TABLE1 = {
-    "SHC DSS": ("shc", "1.43,-1.42,0.632,0.00715,1.31,1.27"),
-    "SHC DSA": ("shc", "0.63,-0.611,0.188,0.00594,1,2.02"),
-    "Maxwell DSS": ("maxwell", "0.655,-0.64,0.519,0.0118,1.94,2.28"),
-    "Maxwell DSA": ("maxwell", "0.44,-0.418,0.113,0.00785,1.27,3.14"),
+    "SHC DSS": Table1Set("shc", (1.43, -1.42, 0.632, 0.00715, 1.31, 1.27)),
+    "SHC DSA": Table1Set("shc", (0.63, -0.611, 0.188, 0.00594, 1.0, 2.02)),
+    "Maxwell DSS": Table1Set("maxwell", (0.655, -0.64, 0.519, 0.0118, 1.94, 2.28)),
+    "Maxwell DSA": Table1Set("maxwell", (0.44, -0.418, 0.113, 0.00785, 1.27, 3.14)),
 }
 
 _MAX_THREADS = 1024
@@ -274,7 +299,7 @@ def _float_engine(rtol: Any, atol: Any, max_step: Any, horizon: Any) -> list:
 # results
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class CorResult:
     """T_s and e of every case of :func:`cor`, one entry per impact speed (in order).
 
@@ -312,10 +337,36 @@ class CorResult:
     @property
     def ok(self) -> np.ndarray:
         """Per case: integrated (separated or not)."""
-        return np.array([m is None for m in self.error], dtype=bool)
+        err = np.empty(np.shape(self.e), dtype=object)
+        err[...] = self.error if err.ndim == 1 else [list(row) for row in self.error]
+        return np.frompyfunc(lambda m: m is None, 1, 1)(err).astype(bool)
 
     def __len__(self) -> int:
         return len(self.e)
+
+    def __repr__(self) -> str:
+        n = int(np.size(self.e))
+        return (
+            f"CorResult(model={self.model!r}, {_frames.shape_text(np.shape(self.e))}, "
+            f"v0 {_frames.span(self.v0)} m/s, e {_frames.span(self.e)}, "
+            f"T_s {_frames.span(self.ts)}, separated {int(np.sum(self.separated))}/{n}, "
+            f"failed {n - int(np.sum(self.ok))}, {self.seconds:.3g} s)"
+        )
+
+    def to_pandas(self) -> Any:
+        """One row per case (``set``, ``speed`` indices for a grid of sets × speeds): v0, ts,
+        e, separated, nfev, steps, [ts_seconds, t_c,] the parameters of the case and error.
+        Needs pandas."""
+        pd = _frames.pandas()
+        shape = np.shape(self.e)
+        n = int(np.size(self.e))
+        cols = _frames.grid_index(shape)
+        for name in ("v0", "ts", "e", "separated", "nfev", "steps", "ts_seconds", "t_c"):
+            if getattr(self, name) is not None:
+                cols[name] = _frames.flat(getattr(self, name))
+        cols.update(_frames.params_columns(self.params, n, False))
+        cols["error"] = _frames.flat_items(self.error, len(shape) - 1)
+        return pd.DataFrame(cols)
 
 
 class FallbackRun(NamedTuple):
@@ -328,7 +379,16 @@ class FallbackRun(NamedTuple):
     reason: Optional[str]
 
 
-@dataclass(frozen=True, eq=False)
+class Sensitivity(NamedTuple):
+    """Proved ∂T_s/∂u and ∂e/∂u of one input u of a case (:func:`cor_rigorous` with
+    ``sensitivities=True``): (lo, hi) bounds rounded outward, or None with ``reason``."""
+
+    dts: Optional[Tuple[float, float]]
+    de: Optional[Tuple[float, float]]
+    reason: Optional[str]
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class RigorousResult:
     """Proved enclosures of :func:`cor_rigorous`, one entry per case (in order).
 
@@ -381,12 +441,78 @@ class RigorousResult:
     fallback: Tuple[Optional[Tuple["FallbackRun", ...]], ...] = ()
     seconds: float = 0.0
     threads: int = 0
+    #: with ``sensitivities=True``: per case {input name: Sensitivity(dts, de, reason)}
+    #: (names as the CLI's: the parameters of the source given, and v0), None where the case
+    #: was not proved
+    sensitivities: Tuple[Optional[dict], ...] = ()
 
     def __len__(self) -> int:
         return len(self.proved)
 
+    def __repr__(self) -> str:
+        shape = np.shape(self.proved)
+        depth = len(shape) - 1
+        proved = int(np.sum(self.proved))
+        n = int(np.size(self.proved))
+        text = f"RigorousResult(model={self.model!r}, {_frames.shape_text(shape)}: {proved} proved"
+        if proved < n:
+            text += f", {n - proved} not proved"
+        if n == 1 and self.e_text[0] is not None and depth == 0:
+            (elo, ehi), (tlo, thi) = self.e_text[0], self.ts_text[0]
+            text += f"; e ∈ [{elo}, {ehi}], T_s ∈ [{tlo}, {thi}]"
+        else:
+            for name in ("e", "ts"):
+                w = _frames.widest(getattr(self, "width_" + name),
+                                   _frames.flat_items(getattr(self, f"width_{name}_text"), depth))
+                if w is not None:
+                    text += f"; widest {'T_s' if name == 'ts' else 'e'} ≤ {w}"
+        return text + f"; {self.seconds:.3g} s)"
 
-@dataclass(frozen=True, eq=False)
+    def to_pandas(self, floats: bool = False) -> Any:
+        """One row per case (``set``, ``speed`` for a grid): the enclosures of v0, T_s and e as
+        ``*_lo``/``*_hi`` and their widths, status, separated, bits, reason and the enclosures
+        of the parameters. By default the bounds are the outward decimals (text: each reads
+        back to its double, ``df.e_lo.astype(float)``), so that printing the frame prints
+        bounds; ``floats=True`` gives float64 columns (pandas displays those rounded to
+        nearest). Needs pandas."""
+        pd = _frames.pandas()
+        shape = np.shape(self.proved)
+        depth = len(shape) - 1
+        n = int(np.size(self.proved))
+        cols = _frames.grid_index(shape)
+        for name in ("v0", "ts", "e", "ts_seconds"):
+            b = getattr(self, name)
+            if b is None:
+                continue
+            if floats:
+                a = np.asarray(b, dtype=float).reshape(-1, 2)
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = a[:, 0], a[:, 1]
+            else:
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = _frames.outward_pairs(b)
+        for name in ("ts", "e"):
+            w = getattr(self, "width_" + name)
+            cols["width_" + name] = (_frames.flat(w) if floats else
+                                     [None if x is None else x for x in
+                                      _frames.flat_items(getattr(self, f"width_{name}_text"), depth)])
+        cols["status"] = _frames.flat_items(self.status, depth)
+        cols["separated"] = _frames.flat(self.separated)
+        if self.bits:
+            cols["bits"] = _frames.flat_items(self.bits, depth)
+        cols["reason"] = _frames.flat_items(self.reason, depth)
+        if floats:
+            cols.update(_frames.params_columns(self.params, n, True))
+        else:
+            if isinstance(self.params, dict):
+                items = list(self.params.items())
+            else:
+                a = np.asarray(self.params, dtype=float).reshape(n, 6, 2)
+                items = [(name, a[:, j]) for j, name in enumerate(_frames.SIX)]
+            for name, b in items:
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = _frames.outward_pairs(b)
+        return pd.DataFrame(cols)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class TrajectoryResult:
     """Samples of the trajectory at uniform times, the last at T_s (or ``t_end``).
 
@@ -407,11 +533,33 @@ class TrajectoryResult:
     rigorous: bool
     note: Optional[str] = None
 
+    def __repr__(self) -> str:
+        t = np.asarray(self.t, dtype=float)
+        end = t[-1] if t.size else float("nan")
+        return (f"TrajectoryResult(model={self.model!r}, {t.size} samples, t 0…{end:.4g}, "
+                f"{self.units}{', proved enclosures' if self.rigorous else ''})")
 
-@dataclass(frozen=True, eq=False)
+    def to_pandas(self, floats: bool = False) -> Any:
+        """One row per sample: t, the states by name, x, v, F; for proved enclosures
+        ``*_lo``/``*_hi`` columns, as outward decimals unless ``floats=True`` (see
+        :meth:`RigorousResult.to_pandas`). Needs pandas."""
+        pd = _frames.pandas()
+        cols: dict = {}
+        named = [(k, self.states[:, j]) for j, k in enumerate(self.state_names)]
+        for name, v in [("t", self.t)] + named + [("x", self.x), ("v", self.v), ("F", self.F)]:
+            v = np.asarray(v)
+            if self.rigorous and v.ndim == 2:
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = (
+                    (v[:, 0], v[:, 1]) if floats else _frames.outward_pairs(v))
+            else:
+                cols[name] = v
+        return pd.DataFrame(cols)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class LoopResult:
     """The hysteresis loop F against x up to T_s, as the CLI's ``loop``: nondimensional
-    (x = X, F = F_P), or with ``physical_units=True`` x = |x| in millimetres and F in newtons
+    (x = X, F = F_P), or with ``physical_units=True`` x = ``|x|`` in millimetres and F in newtons
     (the paper's Fig. 4). Proved: (n, 2) enclosures."""
 
     model: str
@@ -421,8 +569,26 @@ class LoopResult:
     rigorous: bool
     note: Optional[str] = None
 
+    def __repr__(self) -> str:
+        return (f"LoopResult(model={self.model!r}, {len(self.F)} samples, {self.units}"
+                f"{', proved enclosures' if self.rigorous else ''})")
 
-@dataclass(frozen=True, eq=False)
+    def to_pandas(self, floats: bool = False) -> Any:
+        """One row per sample: x, F (``*_lo``/``*_hi`` for proved enclosures, as outward
+        decimals unless ``floats=True``). Needs pandas."""
+        pd = _frames.pandas()
+        cols: dict = {}
+        for name, v in (("x", self.x), ("F", self.F)):
+            v = np.asarray(v)
+            if self.rigorous and v.ndim == 2:
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = (
+                    (v[:, 0], v[:, 1]) if floats else _frames.outward_pairs(v))
+            else:
+                cols[name] = v
+        return pd.DataFrame(cols)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class CostResult:
     """J(ṽ0, ẽ, P*) = sqrt(Σ (ẽ_i − e(𝓟(P*, ṽ0_i)))²) (eq:J) and the curve.
 
@@ -440,6 +606,21 @@ class CostResult:
     e_model: np.ndarray
     errors: Tuple[Tuple[float, str], ...]
 
+    def __repr__(self) -> str:
+        base = ", ".join(f"{x:.4g}" for x in self.base)
+        return (f"{type(self).__name__}(model={self.model!r}, J={self.J:.6g}, rms={self.rms:.4g}, "
+                f"{self.m} rows, base=({base}){self._more()})")
+
+    def _more(self) -> str:
+        return ""
+
+    def to_pandas(self) -> Any:
+        """One row per data point: v0, e_data, e_model, residual = e_data − e_model. Needs
+        pandas."""
+        pd = _frames.pandas()
+        return pd.DataFrame({"v0": self.v0, "e_data": self.e_data, "e_model": self.e_model,
+                             "residual": np.asarray(self.e_data) - np.asarray(self.e_model)})
+
 
 @dataclass(frozen=True, eq=False)
 class FitStart:
@@ -454,7 +635,7 @@ class FitStart:
     converged: bool
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class FitResult(CostResult):
     """The best base set ``base`` = P* = (B_b, Γ_b, κ, σ_b, n, p) of :func:`fit`, J (eq:J)
     there with its curve (as :class:`CostResult`), and every start."""
@@ -481,6 +662,27 @@ class FitResult(CostResult):
     at_bound: Tuple[str, ...] = field(default_factory=tuple)
     #: the whole JSON report of the CLI's ``fit --format json``
     report: dict = field(default_factory=dict)
+
+    def _more(self) -> str:
+        flags = "" if self.converged else ", NOT converged"
+        if self.at_bound:
+            flags += f", at bound: {', '.join(self.at_bound)}"
+        return (f", {len(self.minima)} distinct minim{'um' if len(self.minima) == 1 else 'a'}, "
+                f"{len(self.starts)} starts{flags}, {self.seconds:.3g} s")
+
+    def minima_frame(self) -> Any:
+        """The distinct minima, best first, one row per minimum: J, basin_size, P* by name (B,
+        Gamma, kappa, sigma, n, p: the base set, σ_b as sigma), delta_chi2, indistinguishable,
+        converged. Needs pandas."""
+        pd = _frames.pandas()
+        rows = []
+        for k in self.minima:
+            row = {"J": k.get("J"), "basin_size": k.get("basin_size")}
+            row.update(k.get("P_star", {}))
+            for name in ("delta_chi2", "indistinguishable", "converged"):
+                row[name] = k.get(name)
+            rows.append(row)
+        return pd.DataFrame(rows)
 
 
 class FitProgress(NamedTuple):
@@ -512,6 +714,7 @@ def cor(
     max_step: float = 1e-2,
     horizon: float = 100.0,
     threads: Optional[int] = None,
+    progress: Union[None, bool, Callable[[int, int], Any]] = None,
 ) -> CorResult:
     """T_s (eq:main_t_s) and the coefficient of restitution e = V(T_s) (eq:main_cor) on the
     f64 DOP853 engine, one case per impact speed.
@@ -529,9 +732,20 @@ def cor(
         for a law {m, k} and hertz {n}, hunt-crossley {chi, n}, kelvin-voigt and
         linear-maxwell {c} (``bwcl cor --help``, CLASSICAL LAWS).
     v0 : impact speed(s) v0 > 0 [m/s]: a number, a 1-D array, or the CLI's list "0.5,1,2".
+
+        Several parameter sets in one call: ``base`` or ``nd`` as an (m, 6) array or a list
+        of m sets; ``physical`` (and a law's ``base``/``nd``) as a mapping whose values are
+        1-D arrays of length m (scalars are repeated) or a list of m mappings. Every set is
+        paired with every speed and the m·n cases run in parallel; each per-case field of the
+        result is then an (m, n[, …]) array (m, n: sets, speeds; ``error`` a tuple of m
+        tuples), (m, …) for ``nd``. At most 10⁷ cases per call.
     rtol, atol, max_step : DOP853 settings, the paper's by default (its SciPy call).
     horizon : nondimensional time after which "no separation" is reported (0 < T ≤ 1e6).
-    threads : the size of this call's thread pool (default: the global pool, all cores).
+    threads : the size of this call's thread pool (default: the global pool, all cores;
+        -1 too).
+    progress : True for a progress bar (tqdm when installed), or a callable receiving
+        ``(done, total)`` cases (at most every 0.1 s, and at the end); an exception it raises
+        stops the call and is raised.
 
     Returns
     -------
@@ -539,10 +753,15 @@ def cor(
 
     Examples
     --------
-    >>> r = bwcl.cor("shc", base=bwcl.TABLE1["SHC DSS"][1], v0=[0.5, 1, 2])
+    >>> r = bwcl.cor("shc", base=bwcl.TABLE1["SHC DSS"].base, v0=[0.5, 1, 2])
     >>> r.e  # doctest: +SKIP
     array([0.9…, 0.8…, 0.7…])
+    >>> sets = np.tile(bwcl.TABLE1["SHC DSS"].base, (100, 1))
+    >>> sets[:, 2] = np.linspace(0.3, 0.9, 100)           # κ from 0.3 to 0.9
+    >>> bwcl.cor("shc", base=sets, v0=np.linspace(0.1, 5, 50)).e.shape
+    (100, 50)
     """
+    base, nd, physical, sets = _sets.source_sets(model, base, nd, physical, False)
     argv = ["cor"] + _source(model, base, nd, physical, False)
     argv += _float_engine(rtol, atol, max_step, horizon)
     arr = tokens = None
@@ -550,7 +769,15 @@ def cor(
         arr = _speeds_array(v0)
         if arr is None:
             tokens = _speed_tokens(v0, False)
-    d = _bwcl.cor(argv, v0_array=arr, v0_tokens=tokens, threads=_threads(threads))
+    _sets.check_size(sets, len(arr) if arr is not None else len(tokens or ()))
+    cb = _progress.cases(progress, "cor")
+    d = _bwcl.cor(argv, v0_array=arr, v0_tokens=tokens, sets=sets, threads=_threads(threads),
+                  progress=cb)
+    _progress.finish(cb, len(d["e"]))
+    return _sets.reshape(_cor_result(d), sets, nd is not None)
+
+
+def _cor_result(d: dict) -> CorResult:
     return CorResult(
         model=d["model"],
         v0=d["v0"],
@@ -585,6 +812,8 @@ def cor_rigorous(
     fallback_seconds: Optional[float] = None,
     digits: Optional[int] = None,
     time_limit: float = 300.0,
+    sensitivities: bool = False,
+    progress: Union[None, bool, Callable[[int, int], Any]] = None,
 ) -> RigorousResult:
     """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
     Taylor engine, one case per impact speed.
@@ -602,7 +831,8 @@ def cor_rigorous(
 
     Parameters
     ----------
-    model, base, nd, physical, v0 : as :func:`cor`.
+    model, base, nd, physical, v0 : as :func:`cor` (several parameter sets too: every field
+        then (m, n[, …]), the per-case tuples nested as m tuples of n).
     horizon : nondimensional time within which separation must be proved.
     order : Taylor order K of the engine, 2 ≤ K ≤ 40.
     pieces : ceiling of the adaptive split of a range input, 1 ≤ N ≤ 1024 (default 256; a
@@ -626,6 +856,11 @@ def cor_rigorous(
         cor --rigorous --time-limit S``): cases not proved by then are "not proved" with the
         reason "the time budget of S s ran out".
 
+    sensitivities : also prove ∂T_s/∂u and ∂e/∂u of every input u of each case (its
+        parameters and v0), at its value or over its range (``result.sensitivities``; the
+        Bouc–Wen models, not with ``digits``).
+    progress : as :func:`cor` (cases proved or not, as they end).
+
     A case proved to have no separation before the horizon (T_s > horizon) has status
     "proved", ``separated`` False, NaN bounds and that statement in ``reason``.
 
@@ -635,6 +870,7 @@ def cor_rigorous(
     rounded outward, ``status`` and ``reason`` per case, ``bits`` the precision that decided
     it.
     """
+    base, nd, physical, sets = _sets.source_sets(model, base, nd, physical, True)
     argv = ["cor"] + _source(model, base, nd, physical, True)
     argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
     argv += [f"--order={_num(order, 'order')}"]
@@ -643,11 +879,19 @@ def cor_rigorous(
         if x is not None:
             argv.append(f"--{opt}={_num(x, opt.replace('-', '_'))}")
     if digits is not None:
+        if sensitivities:
+            raise ValueError("sensitivities are proved on the f64-interval engine: not with digits")
         argv += [f"--digits={_num(digits, 'digits')}"]
+    if sensitivities:
+        argv.append("--sensitivities")
     argv += [f"--time-limit={_num(time_limit, 'time_limit')}"]
     tokens = None if v0 is None else _speed_tokens(v0, True)
-    d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, threads=_threads(threads))
+    _sets.check_size(sets, len(tokens or ()))
+    cb = _progress.cases(progress, "cor_rigorous")
+    d = _bwcl.cor_rigorous(argv, v0_tokens=tokens, sets=sets, threads=_threads(threads),
+                           progress=cb)
     n = len(d["proved"])
+    _progress.finish(cb, n)
     res = RigorousResult(
         model=d["model"],
         status=tuple("proved" if p else "not proved" for p in d["proved"]),
@@ -676,11 +920,22 @@ def cor_rigorous(
             None if runs is None else tuple(FallbackRun(*r) for r in runs)
             for runs in d["fallback"]
         ),
+        sensitivities=tuple(
+            None if case is None else {
+                name: Sensitivity(None if dts is None else tuple(dts),
+                                  None if de is None else tuple(de), why)
+                for name, dts, de, why in case
+            }
+            for case in d.get("sensitivities", ())
+        ),
     )
-    if raise_on_failure and not res.proved.all():
-        bad = [i for i in range(n) if not res.proved[i]]
+    flat = res
+    res = _sets.reshape(res, sets, nd is not None)
+    if raise_on_failure and not flat.proved.all():
+        bad = [i for i in range(n) if not flat.proved[i]]
+        where = bad[0] if res is flat else tuple(int(k) for k in np.argwhere(~res.proved)[0])
         raise NotProvedError(
-            f"{len(bad)} of {n} case(s) not proved; case {bad[0]}: {res.reason[bad[0]]}", res
+            f"{len(bad)} of {n} case(s) not proved; case {where}: {flat.reason[bad[0]]}", res
         )
     return res
 
@@ -722,6 +977,21 @@ def _curve(
     return _bwcl.trajectory(argv, threads=_threads(threads))
 
 
+def _several(v0: Any) -> Optional[list]:
+    """The speeds of a ``v0`` that holds several (a sequence, a 1-D array or the CLI's list
+    "1,2"), else None."""
+    v0 = _plain(v0, "v0")
+    if isinstance(v0, str):
+        items = v0.split(",")
+    elif isinstance(v0, np.ndarray) and v0.ndim == 1:
+        items = v0.tolist()
+    elif isinstance(v0, (list, tuple)):
+        items = list(v0)
+    else:
+        return None
+    return items if len(items) > 1 else None
+
+
 def trajectory(
     model: str,
     *,
@@ -747,8 +1017,15 @@ def trajectory(
     Float (default): samples of the DOP853 dense output; with ``physical`` and
     ``physical_units=True``, t [s], x [m], v [m/s], F [N] (t = T·T_c, x = X·X_c,
     eq:BWSHCCM_T_c, eq:BWSHCCM_X_c). ``rigorous=True``: enclosures of the proved flow up to
-    the upper bound of T_s. One impact speed ``v0`` (with ``base`` or ``physical``).
+    the upper bound of T_s. One impact speed ``v0`` (with ``base`` or ``physical``) gives
+    one result; several (a list or 1-D array) a tuple of results, one per speed, in order.
     """
+    many = _several(v0)
+    if many is not None:
+        return tuple(trajectory(model, base=base, nd=nd, physical=physical, v0=v, t_end=t_end,
+                                points=points, physical_units=physical_units,
+                                rigorous=rigorous, rtol=rtol, atol=atol, max_step=max_step,
+                                horizon=horizon, order=order, threads=threads) for v in many)
     d = _curve("trajectory", model, base, nd, physical, v0, t_end, points, physical_units,
                rigorous, rtol, atol, max_step, horizon, order, threads)
     states = d["states"]
@@ -781,7 +1058,14 @@ def loop(
 ) -> LoopResult:
     """The hysteresis loop: the contact force F_P against the deformation X up to T_s, as the
     CLI's ``loop`` (the paper's Fig. 4). Nondimensional, or with ``physical`` and
-    ``physical_units=True`` x = |x| in mm and F in N. Arguments as :func:`trajectory`."""
+    ``physical_units=True`` x = ``|x|`` in mm and F in N. Arguments as :func:`trajectory`
+    (several speeds: a tuple of loops)."""
+    many = _several(v0)
+    if many is not None:
+        return tuple(loop(model, base=base, nd=nd, physical=physical, v0=v, t_end=t_end,
+                          points=points, physical_units=physical_units, rigorous=rigorous,
+                          rtol=rtol, atol=atol, max_step=max_step, horizon=horizon, order=order,
+                          threads=threads) for v in many)
     d = _curve("loop", model, base, nd, physical, v0, t_end, points, physical_units,
                rigorous, rtol, atol, max_step, horizon, order, threads)
     x = d["x"]
@@ -1016,6 +1300,8 @@ def profile(
     return json.loads(_bwcl.profile(argv, v0=a, e=b, threads=_threads(threads)))
 
 
+from . import _frames, _progress, _sets, plot  # noqa: E402
+from .band import BandResult, MonotoneResult, band, prove_monotone  # noqa: E402
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402
 from .laws import (  # noqa: E402
     FORMULAS, LAWS, ClassicalResult, FormulaErrors, LawsResult, classical, compare, laws,

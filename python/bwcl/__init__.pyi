@@ -17,14 +17,29 @@ from .laws import compare as compare
 from .laws import FormulaErrors as FormulaErrors
 from .laws import LawsResult as LawsResult
 from .laws import laws as laws
+from .band import BandResult as BandResult
+from .band import MonotoneResult as MonotoneResult
+from .band import band as band
+from .band import prove_monotone as prove_monotone
+from . import plot as plot
 
 __version__: str
-TABLE1: Dict[str, Tuple[str, str]]
+class Table1Set(NamedTuple):
+    model: str
+    base: Tuple[float, float, float, float, float, float]
+    @property
+    def text(self) -> str: ...
+    @property
+    def named(self) -> Dict[str, float]: ...
+
+TABLE1: Dict[str, Table1Set]
 
 #: a value: a number, a decimal string read as written, or (cor_rigorous) a range (lo, hi)
 Value = Union[float, int, str, Tuple[Union[float, int, str], Union[float, int, str]]]
-#: six values B,Γ,κ,σ,n,p (or B_b,Γ_b,κ,σ_b,n,p), or the CLI's comma-separated text
-ParamSet = Union[str, Sequence[Value], npt.NDArray[np.floating[Any]]]
+#: six values B,Γ,κ,σ,n,p (or B_b,Γ_b,κ,σ_b,n,p), or the CLI's comma-separated text; for
+#: cor/cor_rigorous also several sets: an (m, 6) array or a list of sets (results (m, n, …))
+ParamSet = Union[str, Sequence[Value], npt.NDArray[np.floating[Any]],
+                 Sequence[Sequence[Value]]]
 #: a classical law's parameters by name (e.g. {"sigma": 0.3, "n": 1.5}), or "sigma=0.3,n=1.5"
 LawParams = Union[str, Mapping[str, Value]]
 #: SI parameters m, k, c, n, p, alpha, beta, gamma, A (a classical law: m, k and its own,
@@ -57,6 +72,12 @@ class CorResult:
     @property
     def ok(self) -> npt.NDArray[np.bool_]: ...
     def __len__(self) -> int: ...
+    def to_pandas(self) -> Any: ...
+
+class Sensitivity(NamedTuple):
+    dts: Optional[Tuple[float, float]]
+    de: Optional[Tuple[float, float]]
+    reason: Optional[str]
 
 class FallbackRun(NamedTuple):
     bits: int
@@ -89,7 +110,9 @@ class RigorousResult:
     threads: int
     bits: Tuple[int, ...]
     fallback: Tuple[Optional[Tuple[FallbackRun, ...]], ...]
+    sensitivities: Tuple[Optional[Dict[str, Sensitivity]], ...]
     def __len__(self) -> int: ...
+    def to_pandas(self, floats: bool = ...) -> Any: ...
 
 class TrajectoryResult:
     model: str
@@ -102,6 +125,7 @@ class TrajectoryResult:
     units: str
     rigorous: bool
     note: Optional[str]
+    def to_pandas(self, floats: bool = ...) -> Any: ...
 
 class LoopResult:
     model: str
@@ -110,6 +134,7 @@ class LoopResult:
     units: str
     rigorous: bool
     note: Optional[str]
+    def to_pandas(self, floats: bool = ...) -> Any: ...
 
 class CostResult:
     model: str
@@ -121,6 +146,7 @@ class CostResult:
     e_data: npt.NDArray[np.float64]
     e_model: npt.NDArray[np.float64]
     errors: Tuple[Tuple[float, str], ...]
+    def to_pandas(self) -> Any: ...
 
 class FitStart:
     start: int
@@ -137,6 +163,16 @@ class FitResult(CostResult):
     evaluations: int
     seconds: float
     starts: Tuple[FitStart, ...]
+    minima: Tuple[Dict[str, Any], ...]
+    uncertainty: Optional[Dict[str, Any]]
+    chi2: float
+    reduced_chi2: float
+    s2: float
+    free: Tuple[str, ...]
+    converged: bool
+    at_bound: Tuple[str, ...]
+    report: Dict[str, Any]
+    def minima_frame(self) -> Any: ...
 
 class FitProgress(NamedTuple):
     done: int
@@ -157,6 +193,7 @@ def cor(
     max_step: float = ...,
     horizon: float = ...,
     threads: Optional[int] = ...,
+    progress: Union[None, bool, Callable[[int, int], Any]] = ...,
 ) -> CorResult: ...
 def cor_rigorous(
     model: str,
@@ -174,6 +211,8 @@ def cor_rigorous(
     fallback_seconds: Optional[float] = ...,
     digits: Optional[int] = ...,
     time_limit: float = ...,
+    sensitivities: bool = ...,
+    progress: Union[None, bool, Callable[[int, int], Any]] = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,
@@ -192,7 +231,7 @@ def trajectory(
     horizon: float = ...,
     order: Optional[int] = ...,
     threads: Optional[int] = ...,
-) -> TrajectoryResult: ...
+) -> Union[TrajectoryResult, Tuple[TrajectoryResult, ...]]: ...
 def loop(
     model: str,
     *,
@@ -210,7 +249,7 @@ def loop(
     horizon: float = ...,
     order: Optional[int] = ...,
     threads: Optional[int] = ...,
-) -> LoopResult: ...
+) -> Union[LoopResult, Tuple[LoopResult, ...]]: ...
 def cost(
     model: str,
     data: Optional[PathLike] = ...,
@@ -231,6 +270,14 @@ def fit(
     max_iter: int = ...,
     init: Optional[ParamSet] = ...,
     p1: bool = ...,
+    fix: Optional[Mapping[str, float]] = ...,
+    bounds: Optional[Mapping[str, Tuple[float, float]]] = ...,
+    error: Optional[float] = ...,
+    tc_error: Optional[float] = ...,
+    use_tc: bool = ...,
+    uncertainty: bool = ...,
+    jacobian: str = ...,
+    cluster: bool = ...,
     progress: Union[None, bool, Callable[[FitProgress], Any]] = ...,
     threads: Optional[int] = ...,
 ) -> FitResult: ...

@@ -17,12 +17,12 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _bwcl
+from ._native import native as _bwcl
 
 _STATUS = ("feasible", "infeasible", "undecided")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class IdentifyResult:
     """A paving. ``lo``/``hi``: (k, d) arrays of the boxes' ends in the order of ``free``;
     ``status``: k strings; ``hull``: {name: (lo, hi)} the proved outer hull of F (None: F is
@@ -50,6 +50,35 @@ class IdentifyResult:
     @property
     def empty(self) -> bool:
         return self.hull is None
+
+    def __repr__(self) -> str:
+        from ._frames import outward
+
+        shares = ", ".join(f"{k} {100 * v:.1f} %" for k, v in self.shares.items())
+        if self.hull is None:
+            hull = "F proved empty (the model is falsified at these errors)"
+        else:
+            hull = "hull " + ", ".join(
+                f"{k} ∈ [{outward(lo, False, 6)}, {outward(hi, True, 6)}]"
+                for k, (lo, hi) in self.hull.items())
+        more = "" if self.complete else ", incomplete (time or box budget)"
+        return (f"IdentifyResult(model={self.model!r}, {len(self.status)} boxes: {shares}; "
+                f"{hull}{more}; {self.seconds:.3g} s)")
+
+    def to_pandas(self, floats: bool = False) -> Any:
+        """One row per box: ``<name>_lo``/``<name>_hi`` for each free parameter (as outward
+        decimals unless ``floats=True``) and status. Needs pandas."""
+        from ._frames import outward_pairs, pandas
+
+        pd = pandas()
+        cols: Dict[str, Any] = {}
+        lo, hi = np.asarray(self.lo, dtype=float), np.asarray(self.hi, dtype=float)
+        for j, name in enumerate(self.free):
+            pair = np.stack([lo[:, j], hi[:, j]], axis=1) if len(lo) else np.empty((0, 2))
+            cols[f"{name}_lo"], cols[f"{name}_hi"] = (
+                (pair[:, 0], pair[:, 1]) if floats else outward_pairs(pair))
+        cols["status"] = list(self.status)
+        return pd.DataFrame(cols)
 
 
 def _spec(v: Any, what: str, pair: bool) -> str:
@@ -130,8 +159,8 @@ def identify(
     tc_sigma: Any = None,
     threads: Optional[int] = None,
 ) -> IdentifyResult:
-    """Proved feasible set F = {P* in the box : |e(𝓟(P*, v0_i)) − e_i| ≤ E_i for every i} (and
-    |tc − tc_i| ≤ T_i with a tc column), as ``bwcl identify``. ``bounds`` gives the free
+    """Proved feasible set F = {P* in the box : ``|e(𝓟(P*, v0_i)) − e_i| ≤ E_i`` for every i}
+    (and ``|tc − tc_i| ≤ T_i`` with a tc column), as ``bwcl identify``. ``bounds`` gives the free
     parameters and their box ({"kappa": (0.4, 0.8)} or "kappa=0.4..0.8"; names B_b, Gamma_b,
     kappa, sigma_b, n, p, Greek accepted); the others are fixed by ``fix`` or ``base``
     (B_b, Γ_b, κ, σ_b, n, p). ``error``: the ±E of every e (a ``sigma`` column overrides it).

@@ -17,7 +17,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _bwcl, _num, _threads
+from . import _num, _threads
+from ._native import native as _bwcl
 
 #: The formulas' names (``bwcl laws --formulas``), in order of publication.
 FORMULAS = (

@@ -436,6 +436,10 @@ pub struct ClassicalArgs {
     /// The law.
     #[arg(long, value_enum)]
     pub law: LawArg,
+    /// Write the output to FILE instead of stdout (replaced whole, only when the command
+    /// succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// The exponent n ≥ 1 (hertz, hunt-crossley) [default: 1.5].
     #[arg(long, allow_hyphen_values = true)]
     pub n: Option<String>,
@@ -573,6 +577,10 @@ pub struct FitArgs {
     /// searched over its range: its best value, minima, standard error and 95 % interval).
     #[arg(long, value_enum)]
     pub model: FamilyArg,
+    /// Write the output to FILE instead of stdout (replaced whole, only when the command
+    /// succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// The measured data: CSV with the header v0,e.
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
@@ -659,6 +667,10 @@ pub struct ProfileArgs {
     /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
     #[arg(long, value_enum)]
     pub model: ModelArg,
+    /// Write the output to FILE instead of stdout (replaced whole, only when the command
+    /// succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// The measured data: CSV with the header v0,e.
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
@@ -710,6 +722,10 @@ pub struct CostArgs {
     /// The collision model: shc (NDBWSHCCM) or maxwell (NDBWMCM).
     #[arg(long, value_enum)]
     pub model: ModelArg,
+    /// Write the output to FILE instead of stdout (replaced whole, only when the command
+    /// succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p).
     #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
     pub base: String,
@@ -898,6 +914,10 @@ pub struct MonotoneArgs {
     /// The collision model: shc or maxwell.
     #[arg(long, value_enum)]
     pub model: ModelArg,
+    /// Write the output to FILE instead of stdout (replaced whole, only when the command
+    /// succeeded).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// Base parameters P* = (B_b, Γ_b, κ, σ_b, n, p) (decimals enclosed as written).
     #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
     pub base: String,

@@ -139,6 +139,16 @@ fn band_case(
 /// `cor --rigorous --band FILE`: the proved band, written to FILE; the summary on stdout.
 pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     input::out_path(Some(path))?;
+    let json = path.extension().is_some_and(|e| e == "json");
+    let (bytes, summary) = band_report(a, json)?;
+    output::emit(Some(path), &bytes)?;
+    output::emit(None, summary.as_bytes())?;
+    Ok(super::EXIT_OK)
+}
+
+/// The proved band of `cor --rigorous --band` (the file's bytes, JSON or CSV) and its
+/// one-line summary; a band not proved is a `CliError::Failed` naming why.
+pub fn band_report(a: &CorArgs, json_file: bool) -> Result<(Vec<u8>, String), CliError> {
     let kind = input::bouc_wen_only(a.params.model, "--band")?;
     let opts: TaylorOptions = input::taylor_options(&a.engine)?;
     let cases = input::cases::<Interval>(&a.params)?;
@@ -171,7 +181,7 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     })?;
     let secs = start.elapsed().as_secs_f64();
     let thick = band.thickness();
-    let bytes = if path.extension().is_some_and(|e| e == "json") {
+    let bytes = if json_file {
         let meta = format!(
             "\"model\":\"{}\",\"v0\":[{},{}],\"pieces_count\":{},\"thickness\":{},\"seconds\":{secs:.3}",
             kind.name(),
@@ -184,7 +194,6 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     } else {
         output::csv(&HEAD, band.pieces.iter().map(|p| fields(p, lo, hi)))?
     };
-    output::emit(Some(path), &bytes)?;
     let summary = format!(
         "proved band of e over v0 in [{}, {}]: {} pieces, thickness ≤ {}, e in [{}, {}], {secs:.1} s\n",
         outward(lo, Rounding::Up),
@@ -206,12 +215,23 @@ pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
             Rounding::Up
         ),
     );
-    output::emit(None, summary.as_bytes())?;
-    Ok(super::EXIT_OK)
+    Ok((bytes, summary))
 }
 
-/// `prove monotone`.
+/// `prove monotone`: the report on stdout; exit 1 unless proved.
 pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
+    input::out_path(a.out.as_deref())?;
+    let (text, proved) = monotone_report(a)?;
+    output::emit(a.out.as_deref(), text.as_bytes())?;
+    Ok(if proved {
+        super::EXIT_OK
+    } else {
+        super::EXIT_FAILED
+    })
+}
+
+/// The report of `prove monotone` in its format, and whether the claim was proved.
+pub fn monotone_report(a: &MonotoneArgs) -> Result<(String, bool), CliError> {
     let kind = ModelKind::from(a.model);
     let base = NdParams::<Interval>::parse(kind, &a.base).map_err(|e| {
         CliError::Input(format!(
@@ -383,10 +403,5 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
             }
         }
     };
-    output::emit(None, text.as_bytes())?;
-    Ok(if m.proved() {
-        super::EXIT_OK
-    } else {
-        super::EXIT_FAILED
-    })
+    Ok((text, m.proved()))
 }

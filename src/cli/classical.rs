@@ -214,8 +214,9 @@ fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
 }
 
 pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     let (bytes, code) = report(a)?;
-    output::emit(None, &bytes)?;
+    output::emit(a.out.as_deref(), &bytes)?;
     Ok(code)
 }
 

@@ -179,6 +179,7 @@ fn theta_text(f: &LawFit) -> String {
 
 /// `fit --model <law>`.
 pub fn fit(a: &FitArgs, law: Law) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     for (given, opt) in [
         (a.init.is_some(), "--init"),
         (a.p1, "--p1"),
@@ -266,7 +267,7 @@ pub fn fit(a: &FitArgs, law: Law) -> Result<i32, CliError> {
             s.into_bytes()
         }
     };
-    output::emit(None, &bytes)?;
+    output::emit(a.out.as_deref(), &bytes)?;
     if f.e_model.iter().any(Option::is_none) {
         note("bwcl: the law could not be evaluated at some speeds (residual 1 in J)");
         return Ok(EXIT_FAILED);

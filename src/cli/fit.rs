@@ -433,6 +433,7 @@ pub(crate) fn progress_bar(len: u64) -> ProgressBar {
 }
 
 pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     let kind = match (a.model.kind(), a.model.law()) {
         (Some(kind), _) => kind,
         (_, Some(law)) => return super::compare::fit(a, law),
@@ -564,7 +565,7 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
             s.into_bytes()
         }
     };
-    output::emit(None, &bytes)?;
+    output::emit(a.out.as_deref(), &bytes)?;
     if n_indist > 1 {
         note(&format!(
             "bwcl: warning: the data do not determine P*: {n_indist} minima within the noise \
@@ -704,6 +705,7 @@ fn minima_table(minima: &[Minimum]) -> String {
 }
 
 pub fn cost(a: &CostArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     let kind = ModelKind::from(a.model);
     let base =
         NdParams::<f64>::parse(kind, &a.base).map_err(|e| nd_error::<f64>("--base", &a.base, e))?;
@@ -730,7 +732,7 @@ pub fn cost(a: &CostArgs) -> Result<i32, CliError> {
         )
         .into_bytes(),
     };
-    output::emit(None, &bytes)?;
+    output::emit(a.out.as_deref(), &bytes)?;
     failures(&curve)
 }
 

@@ -4,7 +4,7 @@
 // pub(crate): the Python bindings (src/python/, feature "python") compile this module into the
 // library and reuse its parsers, checks and rows
 pub(crate) mod args;
-mod band;
+pub(crate) mod band;
 pub(crate) mod classical;
 pub(crate) mod commands;
 pub(crate) mod compare;

@@ -57,6 +57,7 @@ fn end_text(e: &End) -> String {
 }
 
 pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     let data = read_data(&a.data)?;
     let bar = profile_bar();
     let out = compute(a, &data, &bar)?;
@@ -128,7 +129,7 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
     if let Some(p) = &a.plot {
         output::emit(Some(p), svg(profiles, out.threshold).as_bytes())?;
     }
-    output::emit(None, &bytes)?;
+    output::emit(a.out.as_deref(), &bytes)?;
     Ok(EXIT_OK)
 }
 

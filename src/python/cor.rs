@@ -8,7 +8,7 @@ use super::cli::commands::float_row;
 use super::cli::input;
 use super::cli::law_runs;
 use super::cli::output::RowParams;
-use super::run::{compute, compute_rows, parse, py_error, stopped};
+use super::run::{compute, compute_rows_progress, parse, py_error, stopped};
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -26,30 +26,71 @@ pub fn cor_args(argv: Vec<String>, lists: &Option<Vec<String>>) -> PyResult<CorA
     }
 }
 
-/// The validated cases of every --v0 list, in order (`make`: the cases of one list), built
-/// with the GIL released and Ctrl-C heard ([`compute`]: a million speeds take a second).
+/// The validated cases of every parameter set (`sets`: the texts of a vectorised call, each in
+/// place of the one source given, --base, --nd or --physical) and every --v0 list, set-major
+/// (`make`: the cases of one set and list), built with the GIL released and Ctrl-C heard
+/// ([`compute`]: a million speeds take a second). A bad set is named by its index.
 pub fn per_list<C: Send>(
     py: Python<'_>,
     a: &CorArgs,
     lists: &Option<Vec<String>>,
+    sets: &Option<Vec<String>>,
     make: impl Fn(&ParamArgs) -> Result<Vec<C>, CliError> + Send + Sync,
 ) -> PyResult<Vec<C>> {
-    let built = compute(py, None, || match lists {
-        None => make(&a.params).map(Some),
-        Some(lists) => {
-            let mut cases = Vec::new();
-            for text in lists {
-                if bwcl::engines::cancel::requested() {
+    let one_set = |p: &ParamArgs, cases: &mut Vec<C>| -> Result<bool, CliError> {
+        match lists {
+            None => cases.extend(make(p)?),
+            Some(lists) => {
+                for text in lists {
+                    if bwcl::engines::cancel::requested() {
+                        return Ok(false);
+                    }
+                    let mut p = p.clone();
+                    p.v0 = Some(text.clone());
+                    cases.extend(make(&p)?);
+                }
+            }
+        }
+        Ok(true)
+    };
+    let built = compute(py, None, || {
+        let mut cases = Vec::new();
+        match sets {
+            None => {
+                if !one_set(&a.params, &mut cases)? {
                     return Ok(None);
                 }
-                let mut p = a.params.clone();
-                p.v0 = Some(text.clone());
-                cases.extend(make(&p)?);
             }
-            Ok(Some(cases))
+            Some(sets) => {
+                for (i, set) in sets.iter().enumerate() {
+                    if bwcl::engines::cancel::requested() {
+                        return Ok(None);
+                    }
+                    let p = with_set(&a.params, set);
+                    let done = one_set(&p, &mut cases).map_err(|e| match e {
+                        CliError::Input(m) => CliError::Input(format!("parameter set {i}: {m}")),
+                        other => other,
+                    })?;
+                    if !done {
+                        return Ok(None);
+                    }
+                }
+            }
         }
+        Ok(Some(cases))
     })?;
     built.map_err(py_error)?.ok_or_else(stopped)
+}
+
+/// `p` with `set` in place of its one parameter source (--base, --nd or --physical).
+fn with_set(p: &ParamArgs, set: &str) -> ParamArgs {
+    let mut p = p.clone();
+    for source in [&mut p.base, &mut p.nd, &mut p.physical] {
+        if source.is_some() {
+            *source = Some(set.to_string());
+        }
+    }
+    p
 }
 
 /// The parameters of the rows: an (n, 6) array for a Bouc–Wen model (an (n, 12) one of
@@ -91,13 +132,15 @@ pub fn put_params<T: Copy, const W: usize>(
 
 /// T_s and e of every case (see `bwcl.cor`): a dict of NumPy arrays.
 #[pyfunction]
-#[pyo3(signature = (argv, v0_array=None, v0_tokens=None, threads=None))]
+#[pyo3(signature = (argv, v0_array=None, v0_tokens=None, sets=None, threads=None, progress=None))]
 pub fn cor<'py>(
     py: Python<'py>,
     argv: Vec<String>,
     v0_array: Option<PyReadonlyArray1<'py, f64>>,
     v0_tokens: Option<Vec<String>>,
+    sets: Option<Vec<String>>,
     threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let lists = speed_lists(v0_array, v0_tokens);
     let a = cor_args(argv, &lists)?;
@@ -107,13 +150,15 @@ pub fn cor<'py>(
     let opts = input::float_options(&a.engine).map_err(py_error)?;
     let (rows, seconds, used) = match a.params.model.law() {
         Some(law) => {
-            let cases = per_list(py, &a, &lists, |p| input::law_cases::<f64>(p, law))?;
-            compute_rows(py, threads, &cases, |c| law_runs::float_row(law, c, &opts))?
+            let cases = per_list(py, &a, &lists, &sets, |p| input::law_cases::<f64>(p, law))?;
+            compute_rows_progress(py, threads, &cases, progress, |c| {
+                law_runs::float_row(law, c, &opts)
+            })?
         }
         None => {
             let kind = input::bouc_wen_only(a.params.model, "cor").map_err(py_error)?;
-            let cases = per_list(py, &a, &lists, input::cases::<f64>)?;
-            compute_rows(py, threads, &cases, |c| float_row(kind, c, &opts))?
+            let cases = per_list(py, &a, &lists, &sets, input::cases::<f64>)?;
+            compute_rows_progress(py, threads, &cases, progress, |c| float_row(kind, c, &opts))?
         }
     };
     let d = PyDict::new(py);

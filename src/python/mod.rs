@@ -12,6 +12,7 @@
 //! - [`rigorous`]: their proved enclosures, rounded outward as floats and decimals;
 //! - [`trajectory`]: the sampled trajectory and hysteresis loop, float or proved;
 //! - [`fit`]: the cost J (eq:J) and the multi-start Nelder–Mead fit, with a progress callback;
+//! - [`band`]: the proved CoR band over a range of speeds and `prove monotone`;
 //! - [`identify`]: proved feasible sets of P* (set-membership identification);
 //! - [`laws`]: the Hunt–Crossley damping formulas' errors, proved;
 //! - [`classical`]: T_s and e of the classical collision laws;
@@ -24,6 +25,7 @@
 mod cli;
 
 mod arrays;
+mod band;
 mod classical;
 mod compare;
 mod cor;
@@ -53,6 +55,8 @@ fn _bwcl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(laws::laws, m)?)?;
     m.add_function(wrap_pyfunction!(classical::classical, m)?)?;
     m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(band::band, m)?)?;
+    m.add_function(wrap_pyfunction!(band::prove_monotone, m)?)?;
     m.add_function(wrap_pyfunction!(run::panic_for_test, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_SPEEDS_PER_PARSE", cli::input::MAX_SPEEDS)?;

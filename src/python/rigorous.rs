@@ -9,7 +9,7 @@ use super::cli::input;
 use super::cli::law_runs;
 use super::cli::output::RigorousRow;
 use super::cor::{cor_args, per_list, put_params};
-use super::run::{compute_rows, py_error};
+use super::run::{compute_rows_progress, py_error};
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::observables::decimal::{Rounding, outward};
 use inari::Interval;
@@ -30,12 +30,14 @@ pub(super) fn pair_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
 /// Enclosures of T_s and e of every case (see `bwcl.cor_rigorous`): a dict of arrays and
 /// lists.
 #[pyfunction]
-#[pyo3(signature = (argv, v0_tokens=None, threads=None))]
+#[pyo3(signature = (argv, v0_tokens=None, sets=None, threads=None, progress=None))]
 pub fn cor_rigorous<'py>(
     py: Python<'py>,
     argv: Vec<String>,
     v0_tokens: Option<Vec<String>>,
+    sets: Option<Vec<String>>,
     threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let lists = speed_lists(None, v0_tokens);
     let a = cor_args(argv, &lists)?;
@@ -48,13 +50,15 @@ pub fn cor_rigorous<'py>(
         }
         law_runs::check_cor_options(&a).map_err(py_error)?;
         let opts = input::taylor_options(&a.engine).map_err(py_error)?;
-        let cases = per_list(py, &a, &lists, |p| input::law_cases::<Interval>(p, law))?;
-        let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
+        let cases = per_list(py, &a, &lists, &sets, |p| {
+            input::law_cases::<Interval>(p, law)
+        })?;
+        let (rows, seconds, used) = compute_rows_progress(py, threads, &cases, progress, |c| {
             law_runs::rigorous_row(law, c, &opts, a.engine.time_limit)
         })?;
         return rows_dict(py, &a, &opts, rows, seconds, used);
     }
-    let cases = per_list(py, &a, &lists, input::cases::<Interval>)?;
+    let cases = per_list(py, &a, &lists, &sets, input::cases::<Interval>)?;
     if let Some(digits) = a.digits {
         return super::digits::cor_digits(py, &a, digits, cases, threads);
     }
@@ -62,13 +66,13 @@ pub fn cor_rigorous<'py>(
     let opts = input::taylor_options(&a.engine).map_err(py_error)?;
     let pieces = input::pieces(&a.engine);
     let fallback = input::fallback(a.fallback_bits, a.fallback_seconds);
-    let (rows, seconds, used) = compute_rows(py, threads, &cases, |c| {
+    let (rows, seconds, used) = compute_rows_progress(py, threads, &cases, progress, |c| {
         rigorous_row(
             kind,
             c,
             &opts,
             pieces,
-            false,
+            a.sensitivities,
             &fallback,
             a.engine.time_limit,
         )
@@ -144,6 +148,20 @@ fn rows_dict<'py>(
             })
             .collect::<Vec<_>>(),
     )?;
+    if a.sensitivities {
+        // per case: (input, ∂T_s/∂u, ∂e/∂u, reason), the bounds rounded outward
+        let sens = rows
+            .iter()
+            .map(|r| {
+                r.sensitivities.as_ref().map(|all| {
+                    all.iter()
+                        .map(|s| (s.input, s.dts, s.de, s.reason.clone()))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect::<Vec<_>>();
+        d.set_item("sensitivities", sens)?;
+    }
     d.set_item("horizon", opts.horizon)?;
     d.set_item("order", opts.order)?;
     d.set_item("seconds", seconds)?;

@@ -74,6 +74,23 @@ where
     T: Send,
     F: FnOnce() -> T + Send,
 {
+    compute_polled(py, threads, f, |_| Ok(()))
+}
+
+/// [`compute`], calling `poll` with the GIL held at every look for signals (every 10 ms while
+/// the computation runs): an exception it returns stops the computation as Ctrl-C does, and
+/// is raised.
+pub fn compute_polled<T, F, P>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    f: F,
+    mut poll: P,
+) -> PyResult<T>
+where
+    T: Send,
+    F: FnOnce() -> T + Send,
+    P: FnMut(Python<'_>) -> PyResult<()>,
+{
     let pool = match threads {
         None => None,
         Some(k) if (1..=MAX_THREADS).contains(&k) => Some(
@@ -117,7 +134,7 @@ where
         let mut interrupted: Option<(PyErr, Request)> = None;
         while !py.detach(wait) {
             if interrupted.is_none()
-                && let Err(e) = py.check_signals()
+                && let Err(e) = py.check_signals().and_then(|()| poll(py))
             {
                 interrupted = Some((e, Request::new()));
             }
@@ -149,22 +166,66 @@ where
     R: Send,
     F: Fn(&C) -> R + Sync + Send,
 {
+    compute_rows_progress(py, threads, cases, None, row)
+}
+
+/// Least time between two calls of a progress callback.
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_millis(100);
+
+/// [`compute_rows`], calling `progress(done, total)` (a Python callable) as the rows finish,
+/// at most every 0.1 s; an exception it raises stops the computation and is raised.
+pub fn compute_rows_progress<C, R, F>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    cases: &[C],
+    progress: Option<Py<PyAny>>,
+    row: F,
+) -> PyResult<(Vec<R>, f64, usize)>
+where
+    C: Sync,
+    R: Send,
+    F: Fn(&C) -> R + Sync + Send,
+{
     use rayon::prelude::*;
-    compute(py, threads, || {
-        let start = std::time::Instant::now();
-        // once a stop is requested the cases left are not started
-        let rows: Option<Vec<R>> = cases
-            .par_iter()
-            .map(|c| (!bwcl::engines::cancel::requested()).then(|| row(c)))
-            .collect();
-        rows.map(|rows| {
-            (
-                rows,
-                start.elapsed().as_secs_f64(),
-                rayon::current_num_threads(),
-            )
-        })
-    })?
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let done = AtomicUsize::new(0);
+    let total = cases.len();
+    let mut shown = (usize::MAX, std::time::Instant::now());
+    let poll = |py: Python<'_>| -> PyResult<()> {
+        let Some(cb) = &progress else { return Ok(()) };
+        let now = done.load(Ordering::Relaxed);
+        if now != shown.0 && (shown.0 == usize::MAX || shown.1.elapsed() >= PROGRESS_EVERY) {
+            shown = (now, std::time::Instant::now());
+            cb.call1(py, (now, total))?;
+        }
+        Ok(())
+    };
+    compute_polled(
+        py,
+        threads,
+        || {
+            let start = std::time::Instant::now();
+            // once a stop is requested the cases left are not started
+            let rows: Option<Vec<R>> = cases
+                .par_iter()
+                .map(|c| {
+                    (!bwcl::engines::cancel::requested()).then(|| {
+                        let r = row(c);
+                        done.fetch_add(1, Ordering::Relaxed);
+                        r
+                    })
+                })
+                .collect();
+            rows.map(|rows| {
+                (
+                    rows,
+                    start.elapsed().as_secs_f64(),
+                    rayon::current_num_threads(),
+                )
+            })
+        },
+        poll,
+    )?
     .ok_or_else(stopped)
 }
 

@@ -27,14 +27,18 @@ if [ ! -x "$VENV/bin/python" ]; then
     fi
 fi
 "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
-    "maturin>=1.7,<2" numpy scipy pytest "dask[distributed]"
+    "maturin>=1.7,<2" numpy scipy pytest "dask[distributed]" pandas matplotlib
 
 echo "run.sh: building the bwcl program and the Python package (CARGO_TARGET_DIR=$CARGO_TARGET_DIR)"
-# BWCL_CARGO_FLAGS: the cargo flags of .ci/setup.sh (the GMP/MPFR fallback), for both builds
-# shellcheck disable=SC2086 # empty or a few flags
-cargo build --release --quiet ${BWCL_CARGO_FLAGS:-} --bin bwcl
+# BWCL_CARGO_FLAGS: the cargo flags of .ci/setup.sh (the GMP/MPFR fallback), for both builds.
+# BWCL_BIN: a `bwcl` program already built (.ci/test.sh passes the one `cargo test` built).
+BIN="${BWCL_BIN:-$CARGO_TARGET_DIR/release/bwcl}"
+if [ -z "${BWCL_BIN:-}" ] || [ ! -x "$BWCL_BIN" ]; then
+    # shellcheck disable=SC2086 # empty or a few flags
+    cargo build --release --quiet ${BWCL_CARGO_FLAGS:-} --bin bwcl
+fi
 # shellcheck disable=SC2086
 VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" "$VENV/bin/maturin" develop --release --quiet ${BWCL_CARGO_FLAGS:-}
 
-BWCL_BIN="$CARGO_TARGET_DIR/release/bwcl" "$VENV/bin/python" -m pytest tests/python -q "$@"
+BWCL_BIN="$BIN" "$VENV/bin/python" -m pytest tests/python -q "$@"
 echo "run.sh: done in $(( $(date +%s) - start )) s"

@@ -39,7 +39,7 @@ def test_profile_equals_cli(cli_json):
 
 
 def test_bad_search_options_raise():
-    with pytest.raises(ValueError, match="--error"):
+    with pytest.raises(ValueError, match="error"):
         bwcl.fit("shc", DATA, starts=1, error=0)
     with pytest.raises(ValueError, match="zeta"):
         bwcl.fit("shc", DATA, starts=1, fix={"zeta": 1})

@@ -48,10 +48,10 @@ def test_arrays_give_the_same_paving(tmp_path):
 
 
 @pytest.mark.parametrize("kw, needle", [
-    (dict(error=0.0), "--error"),
+    (dict(error=0.0), "error"),
     (dict(error=0.01, bounds={"kappa": (1.2, 1.5)}), "outside"),
     (dict(error=0.01, bounds={"zeta": (0.1, 0.2)}), "zeta"),
-    (dict(error=0.01, free=["kappa"]), "--free"),
+    (dict(error=0.01, free=["kappa"]), "free"),
 ])
 def test_bad_input_raises_value_error(tmp_path, kw, needle):
     p = _write(tmp_path)

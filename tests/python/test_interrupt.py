@@ -16,6 +16,9 @@ from conftest import DATA, DSS
 CHILD = textwrap.dedent(
     """
     import os, signal, sys, threading, time
+    # Python's own Ctrl-C handler, as in a terminal: a parent that ignores SIGINT (a background
+    # job of a non-interactive shell) hands SIG_IGN down, and Python then installs none
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     import numpy as np
     import bwcl
     DSS = {dss!r}

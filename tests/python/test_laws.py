@@ -49,9 +49,9 @@ def test_enclosures_hold_scipys_root():
 
 
 def test_bad_input():
-    with pytest.raises(ValueError, match="--tol"):
+    with pytest.raises(ValueError, match="tol"):
         bwcl.laws(tol=0)
-    with pytest.raises(ValueError, match="e-star"):
+    with pytest.raises(ValueError, match="e_star"):
         bwcl.laws(e_star=(0.9, 0.1))
     with pytest.raises(ValueError, match="formulas"):
         bwcl.laws("hertz")
@@ -200,7 +200,7 @@ def test_cor_of_a_law_in_si_units_agrees_with_solve_ivp():
     assert bwcl.cor("hooke", nd={}).e[0] == pytest.approx(1.0, abs=1e-9)
     with pytest.raises(ValueError, match="k = -1 must be > 0"):
         bwcl.cor("kelvin-voigt", physical={"m": 1, "k": -1, "c": 1}, v0=1)
-    with pytest.raises(ValueError, match="fallback-bits is for the Bouc–Wen models"):
+    with pytest.raises(ValueError, match="fallback_bits is for the Bouc–Wen models"):
         bwcl.cor_rigorous("hooke", nd={}, fallback_bits=128)
     with pytest.raises(TypeError, match="by name"):
         bwcl.cor("kelvin-voigt", nd=[0.3])

@@ -146,7 +146,7 @@ def test_digits_match_the_cli_and_the_reference_table(cli):
 
 
 def test_digits_refuse_ranges_and_bad_values():
-    with pytest.raises(ValueError, match="--digits"):
+    with pytest.raises(ValueError, match="digits"):
         bwcl.cor_rigorous("shc", base=DSS, v0=[(0.9, 1.1)], digits=30)
     with pytest.raises(ValueError, match="digits"):
         bwcl.cor_rigorous("shc", base=DSS, v0=1, digits=0)

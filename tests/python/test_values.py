@@ -17,7 +17,8 @@ SPEEDS = [0.1, 0.5, 1.0, 2.0, 3.0, 5.0]
 def test_cor_equals_cli(name, cli_json):
     model, base = bwcl.TABLE1[name]
     r = bwcl.cor(model, base=base, v0=SPEEDS)
-    rows = cli_json("cor", f"--model={model}", f"--base={base}", "--v0=" + ",".join(map(str, SPEEDS)))
+    rows = cli_json("cor", f"--model={model}", f"--base={bwcl.TABLE1[name].text}",
+                    "--v0=" + ",".join(map(str, SPEEDS)))
     assert len(r) == len(rows) == len(SPEEDS)
     for i, row in enumerate(rows):
         assert float(row["e"]) == r.e[i]
@@ -71,7 +72,7 @@ def _csv(text):
 
 def test_trajectory_and_loop_equal_cli(cli):
     t = bwcl.trajectory("maxwell", base=bwcl.TABLE1["Maxwell DSS"][1], v0=2, points=50)
-    code, out, err = cli("trajectory", "--model=maxwell", "--base=" + bwcl.TABLE1["Maxwell DSS"][1],
+    code, out, err = cli("trajectory", "--model=maxwell", "--base=" + bwcl.TABLE1["Maxwell DSS"].text,
                          "--v0=2", "--points=50")
     head, a = _csv(out)
     assert head == ["t", *t.state_names, "x", "v", "F"]

@@ -1,0 +1,46 @@
+"""Progress of a long call: ``progress=True`` shows a bar (tqdm when installed, else one line
+on stderr rewritten in place), a callable receives ``(done, total)``; the extension calls it
+at most every 0.1 s while the cases run, and once more at the end."""
+
+from __future__ import annotations
+
+import sys
+from typing import Any, Callable, Optional
+
+
+def cases(progress: Any, desc: str) -> Optional[Callable[[int, int], Any]]:
+    """The callback for ``progress`` (None, False, True or a callable of (done, total))."""
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    if progress is not True:
+        raise TypeError(f"progress: expected True or a callable (done, total), got "
+                        f"{type(progress).__name__}")
+    try:
+        from tqdm.auto import tqdm  # type: ignore
+    except ImportError:
+        def line(done: int, total: int) -> None:
+            end = "\n" if done >= total else ""
+            sys.stderr.write(f"\r{desc}: {done}/{total} cases{end}")
+            sys.stderr.flush()
+
+        return line
+    bar = None
+
+    def show(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = tqdm(total=total, desc=desc, unit="case")
+        bar.n = done
+        bar.refresh()
+        if done >= total:
+            bar.close()
+
+    return show
+
+
+def finish(cb: Optional[Callable[[int, int], Any]], total: int) -> None:
+    """The last call, when the computation has returned: done = total."""
+    if cb is not None:
+        cb(total, total)

@@ -1,0 +1,169 @@
+"""Proved statements over a whole range of impact speeds: the CoR band (:func:`band`, the
+CLI's ``cor --rigorous --band``) and the monotonicity of e(v0) (:func:`prove_monotone`, the
+CLI's ``prove monotone``).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any, Optional, Tuple
+
+import numpy as np
+
+from ._native import native as _bwcl
+
+__all__ = ["band", "BandResult", "prove_monotone", "MonotoneResult"]
+
+
+def _range(v0: Any, what: str) -> str:
+    """A range of speeds (lo, hi) — or the CLI's text "a..b" — as the CLI's token."""
+    from . import _num
+
+    if isinstance(v0, str):
+        return v0
+    try:
+        lo, hi = v0
+    except (TypeError, ValueError):
+        raise TypeError(f"{what}: expected a range of impact speeds (lo, hi), got {v0!r:.40}") from None
+    return f"{_num(lo, what)}..{_num(hi, what)}"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class BandResult:
+    """The proved CoR curve over a range of v0, piece by piece: on piece i, for every v0 in
+    [v0_lo[i], v0_hi[i]], e(v0) ∈ e_c[i] + de[i]·(v0 − v0_c[i]) (interval arithmetic) and
+    T_s likewise; ``e``/``ts`` the hulls of each piece, ``thickness`` the largest vertical
+    width of the band. Every bound is rounded outward (the pieces' v0 ends inward, the centres
+    exact); ``pieces`` holds the report's text of every field as written (exact decimals)."""
+
+    model: str
+    v0_range: Tuple[float, float]
+    v0_lo: np.ndarray
+    v0_hi: np.ndarray
+    v0_c: np.ndarray
+    e_c: np.ndarray
+    de: np.ndarray
+    e: np.ndarray
+    ts_c: np.ndarray
+    dts: np.ndarray
+    ts: np.ndarray
+    piece_thickness: np.ndarray
+    thickness: float
+    seconds: float
+    pieces: Tuple[dict, ...]
+
+    def __len__(self) -> int:
+        return len(self.v0_lo)
+
+    def __repr__(self) -> str:
+        from ._frames import outward
+
+        lo = outward(float(np.min(self.e[:, 0])), False, 6) if len(self) else "—"
+        hi = outward(float(np.max(self.e[:, 1])), True, 6) if len(self) else "—"
+        return (f"BandResult(model={self.model!r}, v0 ∈ [{self.v0_range[0]!r}, "
+                f"{self.v0_range[1]!r}], {len(self)} pieces, thickness ≤ "
+                f"{outward(self.thickness, True, 3)}, e ∈ [{lo}, {hi}], {self.seconds:.3g} s)")
+
+    def to_pandas(self) -> Any:
+        """One row per piece, the report's exact decimals as text (each bound outward), so that
+        printing the frame prints bounds; ``astype(float)`` gives the float bounds."""
+        from ._frames import pandas
+
+        return pandas().DataFrame(list(self.pieces))
+
+
+def band(
+    model: str,
+    *,
+    base: Any = None,
+    physical: Any = None,
+    v0: Any,
+    thickness: float = 1e-6,
+    order: Optional[int] = None,
+    time_limit: float = 300.0,
+    threads: Optional[int] = None,
+) -> BandResult:
+    """Prove the CoR curve e(v0) over a whole range of impact speeds ``v0=(lo, hi)`` (the
+    CLI's ``cor --rigorous --band``): pieces on which e lies in a linear form e_c + de·(v0 −
+    v0_c), each at most ``thickness`` wide (1e-14 ≤ T ≤ 1), proved by the variational interval
+    engine. ``base`` (or ``physical``) as :func:`~bwcl.cor` (one set; decimals enclosed as
+    written). Not proved within ``time_limit`` seconds (or the engine cannot) raises
+    RuntimeError with the reason."""
+    from . import _num, _source, _threads
+
+    argv = ["cor"] + _source(model, base, None, physical, True)
+    argv += ["--v0=" + _range(v0, "v0"), "--rigorous", "--band=python.json",
+             f"--thickness={_num(thickness, 'thickness')}",
+             f"--time-limit={_num(time_limit, 'time_limit')}"]
+    if order is not None:
+        argv.append(f"--order={_num(order, 'order')}")
+    # numbers kept as the report's text (each reads back to its double)
+    d = json.loads(_bwcl.band(argv, threads=_threads(threads)), parse_float=str)
+    pieces = tuple(d["pieces"])
+
+    def col(name: str) -> np.ndarray:
+        return np.array([float(p[name]) for p in pieces], dtype=float)
+
+    def pair(name: str) -> np.ndarray:
+        return np.stack([col(name + "_lo"), col(name + "_hi")], axis=1) if pieces else np.empty((0, 2))
+
+    return BandResult(
+        model=d["model"], v0_range=(float(d["v0"][0]), float(d["v0"][1])),
+        v0_lo=col("v0_lo"), v0_hi=col("v0_hi"), v0_c=col("v0_c"), e_c=pair("e_c"),
+        de=pair("de"), e=pair("e"), ts_c=pair("ts_c"), dts=pair("dts"), ts=pair("ts"),
+        piece_thickness=col("thickness"), thickness=float(d["thickness"]),
+        seconds=float(d["seconds"]), pieces=pieces,
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class MonotoneResult:
+    """The verdict of :func:`prove_monotone`: "proved" (e strictly decreasing on the whole
+    range: de/dv0 ≤ ``max_slope`` < 0 on each of ``pieces`` pieces), "disproved" (e strictly
+    increasing on the sub-ranges ``increasing``: (lo, hi, (de_lo, de_hi))) or "not proved"
+    (``undecided``: (lo, hi, reason)). Sub-range ends are rounded so that the claim holds on
+    them (inward), slopes outward."""
+
+    model: str
+    v0: Tuple[float, float]
+    verdict: str
+    proved: bool
+    pieces: int
+    max_slope: Optional[float]
+    increasing: Tuple[Tuple[float, float, Tuple[float, float]], ...]
+    undecided: Tuple[Tuple[float, float, str], ...]
+    seconds: float
+
+
+def prove_monotone(
+    model: str,
+    *,
+    base: Any,
+    v0: Any,
+    time_limit: float = 300.0,
+    threads: Optional[int] = None,
+) -> MonotoneResult:
+    """Prove e(v0) strictly decreasing over ``v0=(lo, hi)`` for the base set ``base`` (the
+    CLI's ``prove monotone``): a verdict, never silence — proved, disproved with the
+    sub-ranges that refute it, or not proved with the reason per sub-range, within
+    ``time_limit`` seconds."""
+    from . import _num, _six, _threads
+
+    if not isinstance(model, str):
+        raise TypeError(f"model: expected 'shc' or 'maxwell', got {type(model).__name__}")
+    argv = ["prove", "monotone", f"--model={model}", "--base=" + _six(base, "base", False),
+            "--v0=" + _range(v0, "v0"), "--format=json",
+            f"--time-limit={_num(time_limit, 'time_limit')}"]
+    d = json.loads(_bwcl.prove_monotone(argv, threads=_threads(threads)))
+    return MonotoneResult(
+        model=d["model"], v0=(float(d["v0"][0]), float(d["v0"][1])), verdict=d["verdict"],
+        proved=bool(d["proved_decreasing"]), pieces=int(d["pieces"]),
+        max_slope=None if d["max_slope"] is None else float(d["max_slope"]),
+        increasing=tuple((float(p["v0"][0]), float(p["v0"][1]),
+                          (float(p["de_dv0"][0]), float(p["de_dv0"][1])))
+                         for p in d["increasing"]),
+        undecided=tuple((float(p["v0"][0]), float(p["v0"][1]), p["reason"])
+                        for p in d["undecided"]),
+        seconds=float(d["seconds"]),
+    )
