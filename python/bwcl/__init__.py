@@ -543,17 +543,9 @@ class TrajectoryResult:
         """One row per sample: t, the states by name, x, v, F; for proved enclosures
         ``*_lo``/``*_hi`` columns, as outward decimals unless ``floats=True`` (see
         :meth:`RigorousResult.to_pandas`). Needs pandas."""
-        pd = _frames.pandas()
-        cols: dict = {}
         named = [(k, self.states[:, j]) for j, k in enumerate(self.state_names)]
-        for name, v in [("t", self.t)] + named + [("x", self.x), ("v", self.v), ("F", self.F)]:
-            v = np.asarray(v)
-            if self.rigorous and v.ndim == 2:
-                cols[f"{name}_lo"], cols[f"{name}_hi"] = (
-                    (v[:, 0], v[:, 1]) if floats else _frames.outward_pairs(v))
-            else:
-                cols[name] = v
-        return pd.DataFrame(cols)
+        items = [("t", self.t)] + named + [("x", self.x), ("v", self.v), ("F", self.F)]
+        return _frames.pandas().DataFrame(_frames.sample_columns(items, floats))
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -576,16 +568,8 @@ class LoopResult:
     def to_pandas(self, floats: bool = False) -> Any:
         """One row per sample: x, F (``*_lo``/``*_hi`` for proved enclosures, as outward
         decimals unless ``floats=True``). Needs pandas."""
-        pd = _frames.pandas()
-        cols: dict = {}
-        for name, v in (("x", self.x), ("F", self.F)):
-            v = np.asarray(v)
-            if self.rigorous and v.ndim == 2:
-                cols[f"{name}_lo"], cols[f"{name}_hi"] = (
-                    (v[:, 0], v[:, 1]) if floats else _frames.outward_pairs(v))
-            else:
-                cols[name] = v
-        return pd.DataFrame(cols)
+        items = [("x", self.x), ("F", self.F)]
+        return _frames.pandas().DataFrame(_frames.sample_columns(items, floats))
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -66,6 +66,20 @@ def params_columns(params: Any, per_case: int, bounds: bool) -> Dict[str, np.nda
     return cols
 
 
+def sample_columns(items: Sequence, floats: bool) -> Dict[str, Any]:
+    """Columns of samples by name: a plain array as is, an (n, 2) array of enclosures as
+    ``<name>_lo``/``<name>_hi`` (outward decimals, or the float bounds with ``floats``)."""
+    cols: Dict[str, Any] = {}
+    for name, v in items:
+        v = np.asarray(v)
+        if v.ndim == 2 and v.shape[1] == 2:
+            cols[f"{name}_lo"], cols[f"{name}_hi"] = (
+                (v[:, 0], v[:, 1]) if floats else outward_pairs(v))
+        else:
+            cols[name] = v
+    return cols
+
+
 def span(a: np.ndarray, digits: int = 4) -> str:
     """``lo…hi`` of the finite values of a float array (to ``digits`` figures; not bounds),
     or one value, or "—"."""

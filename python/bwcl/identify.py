@@ -243,7 +243,13 @@ def identify_dask(
         extra = {"pure": False} if _is_dask(client) else {}
         futures.append(client.submit(identify, model, data, bounds=bx, resolution=res,
                                      **extra, **kwargs))
-    parts_out = [f.result() for f in futures]
+    try:
+        parts_out = [f.result() for f in futures]
+    except BaseException:
+        # Ctrl-C (or a part that failed): the parts not yet done are cancelled, not left running
+        for f in futures:
+            f.cancel()
+        raise
     return merge(parts_out, bounds)
 
 

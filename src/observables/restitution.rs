@@ -287,9 +287,15 @@ pub fn pave_within(
     let mut out: Vec<Segment> = Vec::new();
     let mut stack = vec![(lo, hi)];
     while let Some((l, r)) = stack.pop() {
-        let v = judge(formula, l, r, tol);
+        // a stop requested (Ctrl-C in Python, `engines::cancel`): the rest is undecided
+        let stopped = crate::engines::cancel::requested();
+        let v = if stopped {
+            Verdict::Undecided
+        } else {
+            judge(formula, l, r, tol)
+        };
         let m = 0.5 * (l + r);
-        if v == Verdict::Undecided && r - l > min_width && l < m && m < r {
+        if v == Verdict::Undecided && !stopped && r - l > min_width && l < m && m < r {
             // right half pushed first: pieces come off the stack left to right
             stack.push((m, r));
             stack.push((l, m));
@@ -371,6 +377,9 @@ pub fn study(
             let points = grid
                 .iter()
                 .map(|t| {
+                    if crate::engines::cancel::requested() {
+                        return Err("stopped: a cancellation was requested".to_string());
+                    }
                     let e = Big::parse_decimal(t)?;
                     evaluate(f, &e)
                         .map(|p| (t.clone(), p))

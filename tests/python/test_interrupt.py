@@ -46,6 +46,11 @@ CALLS = {
     "fit": "bwcl.fit('shc', data={data!r}, starts=16, seed=3)",
     # a million float CoRs: minutes
     "cor": 'bwcl.cor("shc", base=DSS, v0=np.linspace(0.1, 5, 10**6))',
+    # the ten damping formulas' proved errors: ≈ 17 s (MPFR brackets and pavings)
+    "laws": "bwcl.laws()",
+    # the issue #31 2-D paving: minutes
+    "identify": ("bwcl.identify('shc', {data!r}, error=0.02, base=DSS, resolution=128, "
+                 "bounds={{'sigma_b': (0.001, 0.1), 'kappa': (0.4, 0.8)}}, time_limit=600)"),
 }
 
 
