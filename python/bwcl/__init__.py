@@ -387,6 +387,15 @@ class Sensitivity(NamedTuple):
     de: Optional[Tuple[float, float]]
     reason: Optional[str]
 
+    def __repr__(self) -> str:
+        def pair(b: Optional[Tuple[float, float]]) -> str:
+            if b is None:
+                return "None"
+            return f"[{_frames.outward(b[0], False)}, {_frames.outward(b[1], True)}]"
+
+        why = f", reason={self.reason!r}" if self.reason else ""
+        return f"Sensitivity(dts={pair(self.dts)}, de={pair(self.de)}{why})"
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class RigorousResult:

@@ -15,32 +15,47 @@ from typing import Any
 
 from . import _bwcl
 
-# '--max-step <H>' / "--max-step <H>" / --max-step=… / --max-step → max_step
-_OPTION = re.compile(r"""(['"]?)--([a-z][a-z0-9-]*)(?:[ =]<[^>]*>)?\1""")
+# a quoted option as clap names it: '--max-step <H>' (a quoted '--x' is a value the user wrote)
+_QUOTED_OPTION = re.compile(r"""(['"])--([a-z][a-z0-9-]*) <[^>]*>\1""")
+# an option in the text (not inside a value): --max-step, --max-step=…, --max-step <H>
+_OPTION = re.compile(r"(?<![\w'\"-])--([a-z][a-z0-9-]*)(?:[ =]<[^>]*>)?")
+# a quoted value as the user wrote it, left alone
+_QUOTED = re.compile(r"'[^']*'|\"[^\"]*\"")
 # the CLI's pointers to its help, which mean nothing in Python
 _HELP = re.compile(r"\s*[(;,]?\s*(?:see|try) '?--help'?\)?\.?|\s*For more information, try '--help'\.?",
                    re.IGNORECASE)
 #: options whose Python name differs from the CLI's
 _RENAMED = {"physical-units": "physical_units", "v0": "v0", "t-end": "t_end"}
-
-
 # --fix name=value / --bounds name=lo..hi as the Python call writes them
-_FIX = re.compile(r"--fix[ =]([A-Za-z_]+)=([^\s,)]+)")
-_BOUNDS = re.compile(r"--bounds[ =]([A-Za-z_]+)=([^\s,.)]+)\.\.([^\s,)]+)")
+_FIX = re.compile(r"(?<![\w-])--fix[ =]([A-Za-z_]+)=([^\s,)']+)")
+_BOUNDS = re.compile(r"(?<![\w-])--bounds[ =]([A-Za-z_]+)=([^\s,)']+?)\.\.([^\s,)']+)")
+# "v0: v0 = …" after "--v0: v0 = …" is rewritten: one name is enough
+_TWICE = re.compile(r"^(\w+): \1(\W)")
+
+
+def _name(opt: str) -> str:
+    return _RENAMED.get(opt, opt.replace("-", "_"))
 
 
 def pythonic(message: str) -> str:
-    """A CLI message with the options written as the Python call's keyword arguments."""
+    """A CLI message with the options written as the Python call's keyword arguments; the
+    values the user wrote, quoted in the message, are left as written."""
     message = _HELP.sub("", message)
-    message = _FIX.sub(lambda m: f"fix={{'{m.group(1)}': {m.group(2)}}}", message)
-    message = _BOUNDS.sub(lambda m: f"bounds={{'{m.group(1)}': ({m.group(2)}, {m.group(3)})}}",
-                          message)
+    message = _QUOTED_OPTION.sub(lambda m: _name(m.group(2)), message)
+    out, end = [], 0
+    for q in _QUOTED.finditer(message):
+        out.append(_plain(message[end:q.start()]))
+        out.append(q.group(0))
+        end = q.end()
+    out.append(_plain(message[end:]))
+    return _TWICE.sub(r"\1\2", "".join(out).strip())
 
-    def name(m: "re.Match[str]") -> str:
-        opt = m.group(2)
-        return _RENAMED.get(opt, opt.replace("-", "_"))
 
-    return _OPTION.sub(name, message).strip()
+def _plain(text: str) -> str:
+    text = _FIX.sub(lambda m: f"fix={{'{m.group(1)}': {m.group(2)}}}", text)
+    text = _BOUNDS.sub(lambda m: f"bounds={{'{m.group(1)}': ({m.group(2)}, {m.group(3)})}}",
+                       text)
+    return _OPTION.sub(lambda m: _name(m.group(1)), text)
 
 
 class _Native:

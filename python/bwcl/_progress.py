@@ -44,3 +44,36 @@ def finish(cb: Optional[Callable[[int, int], Any]], total: int) -> None:
     """The last call, when the computation has returned: done = total."""
     if cb is not None:
         cb(total, total)
+
+
+def share(progress: Any, desc: str) -> Optional[Callable[[float, str], Any]]:
+    """The callback for ``progress`` of a computation that reports the share of its work
+    settled (0..1) and a message: None, False, True (a bar) or a callable (share, message)."""
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    if progress is not True:
+        raise TypeError(f"progress: expected True or a callable (share, message), got "
+                        f"{type(progress).__name__}")
+    try:
+        from tqdm.auto import tqdm  # type: ignore
+    except ImportError:
+        def line(s: float, message: str) -> None:
+            end = "\n" if s >= 1.0 else ""
+            sys.stderr.write(f"\r{desc}: {100 * s:.1f} % — {message}{end}")
+            sys.stderr.flush()
+
+        return line
+    bar = None
+
+    def show(s: float, message: str) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = tqdm(total=1000, desc=desc, unit="‰")
+        bar.n = int(min(max(s, 0.0), 1.0) * 1000)
+        bar.set_postfix_str(message, refresh=True)
+        if s >= 1.0:
+            bar.close()
+
+    return show

@@ -30,6 +30,8 @@ def _bouc_wen_sets(x: Any, what: str, ranges: bool) -> Optional[List[str]]:
     if isinstance(x, np.ndarray):
         if x.ndim != 2:
             return None
+        if x.shape[0] == 0:
+            raise ValueError(f"{what}: an array of 0 parameter sets")
         if x.shape[1] != 6:
             raise ValueError(
                 f"{what}: an array of parameter sets has one set of six values B,Γ,κ,σ,n,p per "
@@ -69,6 +71,8 @@ def _named_sets(x: Any, what: str, ranges: bool, text: Any) -> Optional[List[str
             f"{what}: the arrays of values differ in length ({', '.join(f'{k}: {n}' for k, n in lengths.items())})"
         )
     (m,) = m
+    if m == 0:
+        raise ValueError(f"{what}: arrays of 0 values (no parameter set)")
     sets = []
     for i in range(m):
         one = {k: (v[i] if k in lengths else v) for k, v in x.items()}

@@ -26,6 +26,12 @@ def _range(v0: Any, what: str) -> str:
         lo, hi = v0
     except (TypeError, ValueError):
         raise TypeError(f"{what}: expected a range of impact speeds (lo, hi), got {v0!r:.40}") from None
+    try:
+        wrong = float(lo) >= float(hi)
+    except (TypeError, ValueError):
+        wrong = False  # the CLI names what it cannot read
+    if wrong:
+        raise ValueError(f"{what}: expected a range (lo, hi) with lo < hi, got ({lo!r:.20}, {hi!r:.20})")
     return f"{_num(lo, what)}..{_num(hi, what)}"
 
 
@@ -38,6 +44,7 @@ class BandResult:
     exact); ``pieces`` holds the report's text of every field as written (exact decimals)."""
 
     model: str
+    #: the range proved, as floats and (``v0_text``) as the report's decimals, rounded inward
     v0_range: Tuple[float, float]
     v0_lo: np.ndarray
     v0_hi: np.ndarray
@@ -52,6 +59,7 @@ class BandResult:
     thickness: float
     seconds: float
     pieces: Tuple[dict, ...]
+    v0_text: Tuple[str, str] = ("", "")
 
     def __len__(self) -> int:
         return len(self.v0_lo)
@@ -61,8 +69,8 @@ class BandResult:
 
         lo = outward(float(np.min(self.e[:, 0])), False, 6) if len(self) else "—"
         hi = outward(float(np.max(self.e[:, 1])), True, 6) if len(self) else "—"
-        return (f"BandResult(model={self.model!r}, v0 ∈ [{self.v0_range[0]!r}, "
-                f"{self.v0_range[1]!r}], {len(self)} pieces, thickness ≤ "
+        return (f"BandResult(model={self.model!r}, v0 ∈ [{self.v0_text[0]}, "
+                f"{self.v0_text[1]}], {len(self)} pieces, thickness ≤ "
                 f"{outward(self.thickness, True, 3)}, e ∈ [{lo}, {hi}], {self.seconds:.3g} s)")
 
     def to_pandas(self) -> Any:
@@ -83,13 +91,16 @@ def band(
     order: Optional[int] = None,
     time_limit: float = 300.0,
     threads: Optional[int] = None,
+    progress: Any = None,
 ) -> BandResult:
     """Prove the CoR curve e(v0) over a whole range of impact speeds ``v0=(lo, hi)`` (the
     CLI's ``cor --rigorous --band``): pieces on which e lies in a linear form e_c + de·(v0 −
     v0_c), each at most ``thickness`` wide (1e-14 ≤ T ≤ 1), proved by the variational interval
     engine. ``base`` (or ``physical``) as :func:`~bwcl.cor` (one set; decimals enclosed as
     written). Not proved within ``time_limit`` seconds (or the engine cannot) raises
-    RuntimeError with the reason."""
+    RuntimeError with the reason. ``progress``: True for a bar (tqdm when installed) or a
+    callable receiving ``(share, message)``: the share of the range settled, at most every
+    0.1 s."""
     from . import _num, _source, _threads
 
     argv = ["cor"] + _source(model, base, None, physical, True)
@@ -98,8 +109,13 @@ def band(
              f"--time-limit={_num(time_limit, 'time_limit')}"]
     if order is not None:
         argv.append(f"--order={_num(order, 'order')}")
+    from ._progress import share as _share
+
+    cb = _share(progress, "band")
     # numbers kept as the report's text (each reads back to its double)
-    d = json.loads(_bwcl.band(argv, threads=_threads(threads)), parse_float=str)
+    d = json.loads(_bwcl.band(argv, threads=_threads(threads), progress=cb), parse_float=str)
+    if cb is not None:
+        cb(1.0, "done")
     pieces = tuple(d["pieces"])
 
     def col(name: str) -> np.ndarray:
@@ -113,11 +129,11 @@ def band(
         v0_lo=col("v0_lo"), v0_hi=col("v0_hi"), v0_c=col("v0_c"), e_c=pair("e_c"),
         de=pair("de"), e=pair("e"), ts_c=pair("ts_c"), dts=pair("dts"), ts=pair("ts"),
         piece_thickness=col("thickness"), thickness=float(d["thickness"]),
-        seconds=float(d["seconds"]), pieces=pieces,
+        seconds=float(d["seconds"]), pieces=pieces, v0_text=(d["v0"][0], d["v0"][1]),
     )
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class MonotoneResult:
     """The verdict of :func:`prove_monotone`: "proved" (e strictly decreasing on the whole
     range: de/dv0 ≤ ``max_slope`` < 0 on each of ``pieces`` pieces), "disproved" (e strictly
@@ -134,6 +150,21 @@ class MonotoneResult:
     increasing: Tuple[Tuple[float, float, Tuple[float, float]], ...]
     undecided: Tuple[Tuple[float, float, str], ...]
     seconds: float
+    #: the report as the CLI writes it, every number as its text (the v0 ends inward, the
+    #: slopes outward): what the repr prints
+    report: dict = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        r = self.report or {}
+        lo, hi = r.get("v0", ("?", "?"))
+        text = f"MonotoneResult(model={self.model!r}, {self.verdict} for v0 ∈ [{lo}, {hi}]"
+        if self.proved:
+            text += f": de/dv0 ≤ {r.get('max_slope')} < 0 on {self.pieces} pieces"
+        for p in r.get("increasing", [])[:3]:
+            text += f"; increasing on [{p['v0'][0]}, {p['v0'][1]}] (de/dv0 ≥ {p['de_dv0'][0]})"
+        if self.undecided:
+            text += f"; {len(self.undecided)} sub-range(s) undecided"
+        return text + f"; {self.seconds:.3g} s)"
 
 
 def prove_monotone(
@@ -155,7 +186,7 @@ def prove_monotone(
     argv = ["prove", "monotone", f"--model={model}", "--base=" + _six(base, "base", False),
             "--v0=" + _range(v0, "v0"), "--format=json",
             f"--time-limit={_num(time_limit, 'time_limit')}"]
-    d = json.loads(_bwcl.prove_monotone(argv, threads=_threads(threads)))
+    d = json.loads(_bwcl.prove_monotone(argv, threads=_threads(threads)), parse_float=str)
     return MonotoneResult(
         model=d["model"], v0=(float(d["v0"][0]), float(d["v0"][1])), verdict=d["verdict"],
         proved=bool(d["proved_decreasing"]), pieces=int(d["pieces"]),
@@ -165,5 +196,5 @@ def prove_monotone(
                          for p in d["increasing"]),
         undecided=tuple((float(p["v0"][0]), float(p["v0"][1]), p["reason"])
                         for p in d["undecided"]),
-        seconds=float(d["seconds"]),
+        seconds=float(d["seconds"]), report=d,
     )

@@ -158,6 +158,7 @@ def identify(
     tc: Any = None,
     tc_sigma: Any = None,
     threads: Optional[int] = None,
+    progress: Any = None,
 ) -> IdentifyResult:
     """Proved feasible set F = {P* in the box : ``|e(𝓟(P*, v0_i)) − e_i| ≤ E_i`` for every i}
     (and ``|tc − tc_i| ≤ T_i`` with a tc column), as ``bwcl identify``. ``bounds`` gives the free
@@ -168,7 +169,9 @@ def identify(
     (``model="hunt-crossley"``, "kelvin-voigt", "linear-maxwell", "hertz", "hooke") paves its
     one parameter (``bounds`` optional: its useful range); an empty F comes with
     ``certificate``, the rows that refute each range. ``resolution``: 128 for the Bouc–Wen
-    models, 2^20 for a law. Bad input raises ValueError with the program's one line."""
+    models, 2^20 for a law. Bad input raises ValueError with the program's one line.
+    ``progress``: True for a bar (tqdm when installed) or a callable receiving ``(share,
+    message)``: the share of the box decided (a Bouc–Wen model), at most every 0.1 s."""
     path, temp = _data_file(data, v0, e, sigma, tc, tc_sigma)
     try:
         argv = ["identify", f"--model={model}", f"--data={path}", "--format=json"]
@@ -195,7 +198,13 @@ def identify(
             argv.append(f"--time-limit={float(time_limit)!r}")
         if max_boxes is not None:
             argv.append(f"--max-boxes={int(max_boxes)}")
-        return _result(json.loads(_bwcl.identify(argv, threads=threads)))
+        from ._progress import share as _share
+
+        cb = _share(progress, "identify")
+        out = _result(json.loads(_bwcl.identify(argv, threads=threads, progress=cb)))
+        if cb is not None:
+            cb(1.0, "done")
+        return out
     finally:
         if temp:
             os.unlink(path)

@@ -140,30 +140,39 @@ fn band_case(
 pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
     input::out_path(Some(path))?;
     let json = path.extension().is_some_and(|e| e == "json");
-    let (bytes, summary) = band_report(a, json)?;
+    let (bytes, summary) = band_report(a, json, None)?;
     output::emit(Some(path), &bytes)?;
     output::emit(None, summary.as_bytes())?;
     Ok(super::EXIT_OK)
 }
 
 /// The proved band of `cor --rigorous --band` (the file's bytes, JSON or CSV) and its
-/// one-line summary; a band not proved is a `CliError::Failed` naming why.
-pub fn band_report(a: &CorArgs, json_file: bool) -> Result<(Vec<u8>, String), CliError> {
+/// one-line summary; a band not proved is a `CliError::Failed` naming why. Its progress goes
+/// to `watch` when given, else to a bar on a terminal.
+pub fn band_report(
+    a: &CorArgs,
+    json_file: bool,
+    watch: Option<bwcl::observables::band::Progress>,
+) -> Result<(Vec<u8>, String), CliError> {
     let kind = input::bouc_wen_only(a.params.model, "--band")?;
     let opts: TaylorOptions = input::taylor_options(&a.engine)?;
     let cases = input::cases::<Interval>(&a.params)?;
     let (base, lo, hi) = band_case(kind, &cases)?;
-    let bar = super::progress::Progress::range("cor --band", a.engine.time_limit);
+    let bar = watch
+        .is_none()
+        .then(|| super::progress::Progress::range("cor --band", a.engine.time_limit));
     let bo = BandOptions {
         thickness: a.thickness.unwrap_or(1e-6),
         // --order when given, else the band's own default
         order: a.engine.order.unwrap_or(BandOptions::default().order),
-        progress: Some(bar.callback()),
+        progress: watch.or_else(|| bar.as_ref().map(|b| b.callback())),
         ..BandOptions::default()
     };
     let start = std::time::Instant::now();
     let band = prove_band(kind, &base, lo, hi, &bo, &opts);
-    bar.finish();
+    if let Some(b) = &bar {
+        b.finish();
+    }
     let band = band.map_err(|e| {
         let why = if e.out_of_time() {
             let rest = e

@@ -156,8 +156,13 @@ pub(crate) struct Done {
 }
 
 /// Reads the data, builds the problem and paves the box (a progress bar on a terminal when
-/// `bar` is set).
-pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
+/// `bar` is set; `watch` told the share of the box decided and a message, for a Bouc–Wen
+/// model).
+pub(crate) fn compute(
+    a: &IdentifyArgs,
+    bar: bool,
+    watch: Option<&(dyn Fn(f64, String) + Sync)>,
+) -> Result<Done, CliError> {
     let kind = match (a.model.kind(), a.model.law()) {
         (Some(kind), _) => kind,
         (_, Some(law)) => return super::compare::identify(a, law, bar),
@@ -180,16 +185,19 @@ pub(crate) fn compute(a: &IdentifyArgs, bar: bool) -> Result<Done, CliError> {
     opts.slope_taylor.deadline = opts.taylor.deadline;
     let progress = bar.then(|| Progress::range("identify", a.time_limit));
     let cb = |p: bwcl::identify::Progress| {
-        if let Some(b) = &progress {
-            b.set(
-                1.0 - p.undecided,
-                format!(
-                    "{:.1} % of the box decided, {} boxes done, {} waiting",
-                    100.0 * (1.0 - p.undecided),
-                    p.processed,
-                    p.queued
-                ),
+        let message = || {
+            format!(
+                "{:.1} % of the box decided, {} boxes done, {} waiting",
+                100.0 * (1.0 - p.undecided),
+                p.processed,
+                p.queued
             )
+        };
+        if let Some(b) = &progress {
+            b.set(1.0 - p.undecided, message())
+        }
+        if let Some(w) = watch {
+            w(1.0 - p.undecided, message())
         }
     };
     let paving = pave(&prob, &start, &opts, Some(&cb));
@@ -246,7 +254,7 @@ pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError
 }
 
 pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
-    let done = compute(a, true)?;
+    let done = compute(a, true, None)?;
     let d = &done;
     let start = &d.start;
     let paving = &d.paving;

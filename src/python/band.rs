@@ -4,20 +4,38 @@
 
 use super::cli::args::{Command, ProveCommand};
 use super::cli::band::{band_report, monotone_report};
-use super::run::json_command;
+use super::run::{json_command, watched_command};
 use pyo3::prelude::*;
 
 /// The band of `bwcl cor <argv> --rigorous --band F.json` as the file's JSON text (see
 /// `bwcl.band`); nothing is written.
 #[pyfunction]
-#[pyo3(signature = (argv, threads=None))]
-pub fn band(py: Python<'_>, argv: Vec<String>, threads: Option<usize>) -> PyResult<String> {
+#[pyo3(signature = (argv, threads=None, progress=None))]
+pub fn band(
+    py: Python<'_>,
+    argv: Vec<String>,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
     let pick = |c| match c {
         Command::Cor(a) if a.band.is_some() => Some(a),
         _ => None,
     };
-    json_command(py, &argv, threads, "band", pick, |a| {
-        band_report(a, true).map(|(bytes, _)| bytes)
+    watched_command(py, &argv, threads, "band", pick, progress, |a, watch| {
+        let watch = watch.clone();
+        let tell = bwcl::observables::band::Progress(std::sync::Arc::new(
+            move |share: f64, pieces: usize| {
+                let share = if share > 0.0 { share.min(1.0) } else { 0.0 };
+                watch.set(
+                    share,
+                    format!(
+                        "{:.1} % of the range settled, {pieces} pieces",
+                        100.0 * share
+                    ),
+                )
+            },
+        ));
+        band_report(a, true, Some(tell)).map(|(bytes, _)| bytes)
     })
 }
 

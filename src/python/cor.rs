@@ -67,8 +67,11 @@ pub fn per_list<C: Send>(
                         return Ok(None);
                     }
                     let p = with_set(&a.params, set);
+                    // a bad set is named by its index (a bad speed is the speed's fault)
                     let done = one_set(&p, &mut cases).map_err(|e| match e {
-                        CliError::Input(m) => CliError::Input(format!("parameter set {i}: {m}")),
+                        CliError::Input(m) if !m.starts_with("--v0") => {
+                            CliError::Input(format!("parameter set {i}: {m}"))
+                        }
                         other => other,
                     })?;
                     if !done {

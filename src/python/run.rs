@@ -42,9 +42,58 @@ where
     P: FnOnce(Command) -> Option<A>,
     R: FnOnce(&A) -> Result<Vec<u8>, CliError> + Send,
 {
+    watched_command(py, argv, threads, name, pick, None, |a, _| report(a))
+}
+
+/// The progress a computation reports as it goes: the share of its work settled (0..1) and a
+/// message; only the latest is kept, for the polling loop of [`watched_command`] to show.
+#[derive(Clone, Default)]
+pub struct Watch(std::sync::Arc<Mutex<Option<(f64, String)>>>);
+
+impl Watch {
+    /// The share is clamped to [0, 1] (−0 read as 0).
+    pub fn set(&self, share: f64, message: String) {
+        let share = if share > 0.0 { share.min(1.0) } else { 0.0 };
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some((share, message));
+    }
+    fn take(&self) -> Option<(f64, String)> {
+        self.0.lock().unwrap_or_else(PoisonError::into_inner).take()
+    }
+}
+
+/// [`json_command`] whose report tells its progress to a [`Watch`]: `progress(share,
+/// message)` (a Python callable) is called with the latest at most every 0.1 s; an exception
+/// it raises stops the computation and is raised.
+pub fn watched_command<A, P, R>(
+    py: Python<'_>,
+    argv: &[String],
+    threads: Option<usize>,
+    name: &str,
+    pick: P,
+    progress: Option<Py<PyAny>>,
+    report: R,
+) -> PyResult<String>
+where
+    A: Send + Sync,
+    P: FnOnce(Command) -> Option<A>,
+    R: FnOnce(&A, &Watch) -> Result<Vec<u8>, CliError> + Send,
+{
     let a = pick(parse(argv)?.command)
         .ok_or_else(|| PyValueError::new_err(format!("{name}: not a {name} command")))?;
-    let bytes = compute(py, threads, || report(&a))?.map_err(py_error)?;
+    let watch = Watch::default();
+    let mut shown: Option<std::time::Instant> = None;
+    let poll = |py: Python<'_>| -> PyResult<()> {
+        let Some(cb) = &progress else { return Ok(()) };
+        if shown.is_some_and(|t| t.elapsed() < PROGRESS_EVERY) {
+            return Ok(());
+        }
+        if let Some((share, message)) = watch.take() {
+            shown = Some(std::time::Instant::now());
+            cb.call1(py, (share, message))?;
+        }
+        Ok(())
+    };
+    let bytes = compute_polled(py, threads, || report(&a, &watch), poll)?.map_err(py_error)?;
     String::from_utf8(bytes).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 

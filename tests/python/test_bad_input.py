@@ -200,3 +200,24 @@ def test_inputs_read_as_something_else_are_refused():
         bwcl.fit("shc", v0=[1.0], e=[0.8])
     with pytest.raises(ValueError, match=r"p1 .*fix=\{'p': 1\}"):
         bwcl.fit("shc", DATA, p1=True)
+
+
+
+def test_review_of_the_python_terms():
+    """Review of #34: the user's own values are echoed as written (a '--' inside them is not
+    an option), empty sweeps and reversed ranges are one ValueError, a bad speed in a sweep
+    is not blamed on a parameter set."""
+    with pytest.raises(ValueError, match="sh--c"):
+        bwcl.cor("sh--c", base=DSS, v0=1.0)
+    with pytest.raises(ValueError, match=r"1--a"):
+        bwcl.cor("shc", base="1.43,-1.42,0.632,0.00715,1.31,1--a", v0=1.0)
+    with pytest.raises(ValueError, match="0 parameter sets"):
+        bwcl.cor("shc", base=np.zeros((0, 6)), v0=1.0)
+    with pytest.raises(ValueError, match="no parameter set"):
+        bwcl.cor("hertz", base={"n": []}, v0=1.0)
+    with pytest.raises(ValueError, match="lo < hi"):
+        bwcl.prove_monotone("shc", base=DSS, v0=(2, 1))
+    two = np.array([[1.43, -1.42, 0.632, 0.00715, 1.31, 1.27]] * 2)
+    with pytest.raises(ValueError) as ex:
+        bwcl.cor("shc", base=two, v0=[0.5, -1.0])
+    assert "parameter set" not in str(ex.value) and "-1.0" in str(ex.value)

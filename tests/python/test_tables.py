@@ -148,3 +148,27 @@ def test_plots(tmp_path):
     with pytest.raises(ValueError):
         bwcl.plot.cor_curve()
     plt.close("all")
+
+
+def _bounds_in(text):
+    import re
+
+    return [Fraction(Decimal(x)) for x in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", text)]
+
+
+def test_reprs_of_proofs_print_bounds():
+    """Review of #34: the sensitivities, the band's range and the monotone verdict print the
+    bounds outward (or as the report's inward range), never a float's nearest repr."""
+    q = bwcl.cor_rigorous("shc", base=DSS, v0=[1.0], sensitivities=True)
+    for name, s in q.sensitivities[0].items():
+        lo_dts, hi_dts, lo_de, hi_de = _bounds_in(repr(s))[:4]
+        assert lo_dts <= Fraction(s.dts[0]) and Fraction(s.dts[1]) <= hi_dts, (name, repr(s))
+        assert lo_de <= Fraction(s.de[0]) and Fraction(s.de[1]) <= hi_de, (name, repr(s))
+    b = bwcl.band("shc", base=DSS, v0=(0.9, 1.0), thickness=1e-4)
+    assert f"v0 ∈ [{b.v0_text[0]}, {b.v0_text[1]}]" in repr(b)
+    # the range printed inward: inside the doubles the band was proved between
+    assert Fraction(Decimal(b.v0_text[0])) >= Fraction(b.v0_range[0])
+    assert Fraction(Decimal(b.v0_text[1])) <= Fraction(b.v0_range[1])
+    m = bwcl.prove_monotone("shc", base=DSS, v0=(0.5, 0.52))
+    assert f"de/dv0 ≤ {m.report['max_slope']} < 0" in repr(m)
+    assert Fraction(Decimal(m.report["max_slope"])) >= Fraction(m.max_slope)
