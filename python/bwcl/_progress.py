@@ -8,18 +8,31 @@ import sys
 from typing import Any, Callable, Optional
 
 
-def cases(progress: Any, desc: str) -> Optional[Callable[[int, int], Any]]:
-    """The callback for ``progress`` (None, False, True or a callable of (done, total))."""
+def _given(progress: Any, args: str) -> Any:
+    """None (no progress), the user's callable, or True (a bar is wanted)."""
     if progress is None or progress is False:
         return None
-    if callable(progress):
+    if callable(progress) or progress is True:
         return progress
-    if progress is not True:
-        raise TypeError(f"progress: expected True or a callable (done, total), got "
-                        f"{type(progress).__name__}")
+    raise TypeError(f"progress: expected True or a callable ({args}), got "
+                    f"{type(progress).__name__}")
+
+
+def _tqdm() -> Any:
     try:
         from tqdm.auto import tqdm  # type: ignore
     except ImportError:
+        return None
+    return tqdm
+
+
+def cases(progress: Any, desc: str) -> Optional[Callable[[int, int], Any]]:
+    """The callback for ``progress`` (None, False, True or a callable of (done, total))."""
+    given = _given(progress, "done, total")
+    if given is not True:
+        return given
+    tqdm = _tqdm()
+    if tqdm is None:
         def line(done: int, total: int) -> None:
             end = "\n" if done >= total else ""
             sys.stderr.write(f"\r{desc}: {done}/{total} cases{end}")
@@ -49,16 +62,11 @@ def finish(cb: Optional[Callable[[int, int], Any]], total: int) -> None:
 def share(progress: Any, desc: str) -> Optional[Callable[[float, str], Any]]:
     """The callback for ``progress`` of a computation that reports the share of its work
     settled (0..1) and a message: None, False, True (a bar) or a callable (share, message)."""
-    if progress is None or progress is False:
-        return None
-    if callable(progress):
-        return progress
-    if progress is not True:
-        raise TypeError(f"progress: expected True or a callable (share, message), got "
-                        f"{type(progress).__name__}")
-    try:
-        from tqdm.auto import tqdm  # type: ignore
-    except ImportError:
+    given = _given(progress, "share, message")
+    if given is not True:
+        return given
+    tqdm = _tqdm()
+    if tqdm is None:
         def line(s: float, message: str) -> None:
             end = "\n" if s >= 1.0 else ""
             sys.stderr.write(f"\r{desc}: {100 * s:.1f} % — {message}{end}")
