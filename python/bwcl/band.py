@@ -174,11 +174,12 @@ def prove_monotone(
     v0: Any,
     time_limit: float = 300.0,
     threads: Optional[int] = None,
+    progress: Any = None,
 ) -> MonotoneResult:
     """Prove e(v0) strictly decreasing over ``v0=(lo, hi)`` for the base set ``base`` (the
     CLI's ``prove monotone``): a verdict, never silence — proved, disproved with the
     sub-ranges that refute it, or not proved with the reason per sub-range, within
-    ``time_limit`` seconds."""
+    ``time_limit`` seconds. ``progress`` as :func:`band`."""
     from . import _num, _six, _threads
 
     if not isinstance(model, str):
@@ -186,7 +187,13 @@ def prove_monotone(
     argv = ["prove", "monotone", f"--model={model}", "--base=" + _six(base, "base", False),
             "--v0=" + _range(v0, "v0"), "--format=json",
             f"--time-limit={_num(time_limit, 'time_limit')}"]
-    d = json.loads(_bwcl.prove_monotone(argv, threads=_threads(threads)), parse_float=str)
+    from ._progress import share as _share
+
+    cb = _share(progress, "prove_monotone")
+    d = json.loads(_bwcl.prove_monotone(argv, threads=_threads(threads), progress=cb),
+                   parse_float=str)
+    if cb is not None:
+        cb(1.0, "done")
     return MonotoneResult(
         model=d["model"], v0=(float(d["v0"][0]), float(d["v0"][1])), verdict=d["verdict"],
         proved=bool(d["proved_decreasing"]), pieces=int(d["pieces"]),

@@ -230,7 +230,7 @@ pub fn band_report(
 /// `prove monotone`: the report on stdout; exit 1 unless proved.
 pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
-    let (text, proved) = monotone_report(a)?;
+    let (text, proved) = monotone_report(a, None)?;
     output::emit(a.out.as_deref(), text.as_bytes())?;
     Ok(if proved {
         super::EXIT_OK
@@ -239,8 +239,12 @@ pub fn monotone(a: &MonotoneArgs) -> Result<i32, CliError> {
     })
 }
 
-/// The report of `prove monotone` in its format, and whether the claim was proved.
-pub fn monotone_report(a: &MonotoneArgs) -> Result<(String, bool), CliError> {
+/// The report of `prove monotone` in its format, and whether the claim was proved. Its
+/// progress goes to `watch` when given, else to a bar on a terminal.
+pub fn monotone_report(
+    a: &MonotoneArgs,
+    watch: Option<bwcl::observables::band::Progress>,
+) -> Result<(String, bool), CliError> {
     let kind = ModelKind::from(a.model);
     let base = NdParams::<Interval>::parse(kind, &a.base).map_err(|e| {
         CliError::Input(format!(
@@ -270,7 +274,9 @@ pub fn monotone_report(a: &MonotoneArgs) -> Result<(String, bool), CliError> {
         )));
     }
     let start = std::time::Instant::now();
-    let bar = super::progress::Progress::range("prove monotone", a.time_limit);
+    let bar = watch
+        .is_none()
+        .then(|| super::progress::Progress::range("prove monotone", a.time_limit));
     let m = prove_decreasing(
         kind,
         &base,
@@ -278,7 +284,7 @@ pub fn monotone_report(a: &MonotoneArgs) -> Result<(String, bool), CliError> {
         hi,
         &BandOptions {
             min_width: (hi - lo) * 1e-6,
-            progress: Some(bar.callback()),
+            progress: watch.or_else(|| bar.as_ref().map(|b| b.callback())),
             ..BandOptions::default()
         },
         &TaylorOptions {
@@ -286,7 +292,9 @@ pub fn monotone_report(a: &MonotoneArgs) -> Result<(String, bool), CliError> {
             ..TaylorOptions::default()
         },
     );
-    bar.finish();
+    if let Some(b) = &bar {
+        b.finish();
+    }
     let secs = start.elapsed().as_secs_f64();
     let limit = input::time_limit(a.time_limit);
     // a piece stopped by the budget: named with the budget

@@ -171,3 +171,6 @@ def test_progress_of_band_and_identify():
     assert any("boxes done" in m for _, m in seen[:-1]), seen
     with pytest.raises(TypeError, match="progress"):
         bwcl.band("shc", base=DSS, v0=(0.9, 1.0), progress=3)
+    seen = []
+    m = bwcl.prove_monotone("shc", base=DSS, v0=(0.5, 1.0), progress=lambda s, m: seen.append(s))
+    assert m.proved and seen[-1] == 1.0

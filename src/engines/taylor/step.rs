@@ -150,7 +150,7 @@ pub struct Tapes<const N: usize, I: Enclosure = Interval> {
 impl<const N: usize, I: Enclosure> Tapes<N, I> {
     /// The jet tapes of an interval tape (constants converted exactly: same endpoints).
     ///
-    /// Measured on the 28 Table 1 cases (`cargo run --release --example singular`,
+    /// Measured on the 28 Table 1 cases (`cargo run --release --features bench --example singular`,
     /// 2026-11-25; benches/RESULTS.md "Linear chains fused"): the Jacobian's forms rounded
     /// once, time × 0.98, pieces and widths the same; the a-priori box's too, 1.5 % less again
     /// but Maxwell DSS v0 = 0.1 flips to another event path, e 1.35× wider; the jets over X

@@ -107,7 +107,7 @@ pub struct SingularOptions {
 /// iterations and one tightening image took 17.5 ms per CoR (M = 5: 19.9 ms, M = 8: 27.7 ms),
 /// e 1.83e-13 wide.
 ///
-/// The start step (measured on the 28 Table 1 cases, `cargo run --release --example
+/// The start step (measured on the 28 Table 1 cases, `cargo run --release --features bench --example
 /// singular`, 3 interleaved repetitions, 2026-11-25): δ = 5e-3 with M = 6 took a median 0.942
 /// of the time without it (pieces −17 … −24 per case, SHC DSS v0 = 1: 134 → 112); δ = 1e-2,
 /// M = 8: 1.001; δ = 2e-2, M = 8: 0.993 (−27 pieces, refused on SHC DSA v0 = 5); δ = 3e-2,
