@@ -501,8 +501,7 @@ class RigorousResult:
         for name in ("ts", "e"):
             w = getattr(self, "width_" + name)
             cols["width_" + name] = (_frames.flat(w) if floats else
-                                     [None if x is None else x for x in
-                                      _frames.flat_items(getattr(self, f"width_{name}_text"), depth)])
+                                     _frames.flat_items(getattr(self, f"width_{name}_text"), depth))
         cols["status"] = _frames.flat_items(self.status, depth)
         cols["separated"] = _frames.flat(self.separated)
         if self.bits:
@@ -1204,17 +1203,15 @@ def fit(
         argv += ["--uncertainty", f"--jacobian={jacobian}"]
     if not cluster:
         argv.append("--no-cluster")
-    cb = None
-    if progress is True:
-        progress = _text_progress()
-    if callable(progress):
-        user = progress
+    user = _progress.given(progress, "a FitProgress")
+    if user is True:
+        user = _text_progress()
 
-        def cb(done: int, total: int, starts_done: int, n: int, j: float) -> None:
-            user(FitProgress(done, total, starts_done, n, j))
-    elif progress not in (None, False):
-        raise TypeError(f"progress: expected a callable or True, got {type(progress).__name__}")
-    d = _bwcl.fit(argv, v0=a, e=b, progress=cb, threads=_threads(threads))
+    def cb(done: int, total: int, starts_done: int, n: int, j: float) -> None:
+        user(FitProgress(done, total, starts_done, n, j))
+
+    d = _bwcl.fit(argv, v0=a, e=b, progress=None if user is None else cb,
+                  threads=_threads(threads))
     starts_out = tuple(
         FitStart(start=s["start"], J=s["J"], base=tuple(s["base"]), initial=tuple(s["initial"]),
                  iterations=s["iterations"], evaluations=s["evaluations"],

@@ -103,7 +103,7 @@ def widest(widths: np.ndarray, texts: Sequence[Optional[str]]) -> Optional[str]:
     return outward(max(w[i] for i in ok), True, 2)
 
 
-def shape_text(shape: Sequence[int], nd: bool = False) -> str:
+def shape_text(shape: Sequence[int]) -> str:
     if len(shape) >= 2:
         return f"{shape[0]} sets × {shape[1]} speeds"
     n = shape[0] if shape else 0

@@ -8,7 +8,7 @@ import sys
 from typing import Any, Callable, Optional
 
 
-def _given(progress: Any, args: str) -> Any:
+def given(progress: Any, args: str) -> Any:
     """None (no progress), the user's callable, or True (a bar is wanted)."""
     if progress is None or progress is False:
         return None
@@ -28,9 +28,9 @@ def _tqdm() -> Any:
 
 def cases(progress: Any, desc: str) -> Optional[Callable[[int, int], Any]]:
     """The callback for ``progress`` (None, False, True or a callable of (done, total))."""
-    given = _given(progress, "done, total")
-    if given is not True:
-        return given
+    chosen = given(progress, "done, total")
+    if chosen is not True:
+        return chosen
     tqdm = _tqdm()
     if tqdm is None:
         def line(done: int, total: int) -> None:
@@ -62,9 +62,9 @@ def finish(cb: Optional[Callable[[int, int], Any]], total: int) -> None:
 def share(progress: Any, desc: str) -> Optional[Callable[[float, str], Any]]:
     """The callback for ``progress`` of a computation that reports the share of its work
     settled (0..1) and a message: None, False, True (a bar) or a callable (share, message)."""
-    given = _given(progress, "share, message")
-    if given is not True:
-        return given
+    chosen = given(progress, "share, message")
+    if chosen is not True:
+        return chosen
     tqdm = _tqdm()
     if tqdm is None:
         def line(s: float, message: str) -> None:

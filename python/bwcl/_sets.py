@@ -9,7 +9,6 @@ from (m·n, …) to (m, n, …) — (m, …) for ``nd``, which has no speeds.
 from __future__ import annotations
 
 import dataclasses
-import numbers
 from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -141,12 +140,3 @@ def reshape(result: Any, sets: Optional[List[str]], nd: bool) -> Any:
                for f in dataclasses.fields(result)}
     return dataclasses.replace(result, **changes)
 
-
-def count(x: Any) -> int:
-    """The number of speeds a ``v0`` argument gives (for the size check; 1 when unknown)."""
-    if x is None or isinstance(x, (numbers.Real, str)):
-        return 1 if not isinstance(x, str) else x.count(",") + 1
-    try:
-        return len(x)
-    except TypeError:
-        return 1
