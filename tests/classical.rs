@@ -24,7 +24,7 @@ use rug::float::Constant;
 
 use rug::{Float, Rational};
 
-mod common;
+use crate::common;
 
 const BITS: u32 = 200;
 

@@ -8,7 +8,7 @@ use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-mod common;
+use crate::common;
 use common::bwcl;
 
 const DSS: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";
@@ -1029,5 +1029,108 @@ fn reports_go_to_out_files() {
         bad.extend(["--out", "/nonexistent-dir/r.txt"]);
         let msg = assert_bad_input(&bad);
         assert!(msg.contains("out"), "{msg}");
+    }
+}
+
+/// --derived: Hooke's law in SI (m = 2 kg, k = 8 N/m, v0 = 3 m/s) has ω = 2/s, δ_max =
+/// v0/ω = 1.5 m, F_max = k δ_max = 12 N and loses no energy; every format carries the columns,
+/// the proved ones hold the closed forms, a range says why it has none, and --derived with
+/// --digits or --band is refused.
+#[test]
+fn derived_outputs_in_every_format() {
+    let hooke = [
+        "cor",
+        "--model",
+        "hooke",
+        "--physical",
+        "m=2,k=8",
+        "--v0",
+        "3",
+        "--derived",
+    ];
+    let pair = |v: &Value| -> [f64; 2] { [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()] };
+    let row = &json(&[&hooke[..], &["--rigorous", "--format", "json"]].concat())[0];
+    let d = &row["derived"];
+    for (key, exact) in [
+        ("peak_force", 1.0),
+        ("max_indentation", 1.0),
+        ("energy_lost", 0.0),
+        ("peak_force_newtons", 12.0),
+        ("max_indentation_m", 1.5),
+        ("energy_lost_joules", 0.0),
+    ] {
+        let [lo, hi] = pair(&d[key]);
+        assert!(
+            lo <= exact && exact <= hi && hi - lo < 1e-11,
+            "{key}: [{lo}, {hi}]"
+        );
+    }
+    let row = &json(&[&hooke[..], &["--format", "json"]].concat())[0];
+    let f = row["derived"]["peak_force_newtons"].as_f64().unwrap();
+    assert!((f - 12.0).abs() < 1e-8, "{f}");
+    for rigorous in [false, true] {
+        let mut args = hooke.to_vec();
+        args.extend(["--format", "csv"]);
+        if rigorous {
+            args.push("--rigorous");
+        }
+        let o = bwcl(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let text = stdout(&o);
+        let head = text.lines().next().unwrap();
+        for col in ["peak_force", "max_indentation_m", "energy_lost_joules"] {
+            assert!(head.contains(col), "{head}");
+        }
+        let mut args = hooke.to_vec();
+        if rigorous {
+            args.push("--rigorous");
+        }
+        let table = stdout(&bwcl(&args));
+        assert!(table.contains("peak_force_newtons"), "{table}");
+        assert!(table.lines().nth(1).unwrap().contains("12"), "{table}");
+    }
+    // a range: proved, without derived outputs, and the row says why
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        DSS,
+        "--v0",
+        "1..1.01",
+        "--rigorous",
+        "--derived",
+        "--format",
+        "json",
+    ]);
+    let r = &rows(&o)[0];
+    assert_eq!(r["proved"], true);
+    assert!(r["derived"]["peak_force"].is_null());
+    assert!(
+        r["derived"]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("point cases"),
+        "{r}"
+    );
+    // without --derived, no field
+    let r = &json(&[
+        "cor", "--model", "shc", "--base", DSS, "--v0", "1", "--format", "json",
+    ])[0];
+    assert!(r.get("derived").is_none());
+    for extra in [["--digits", "30"], ["--band", "-"]] {
+        let mut args = vec![
+            "cor",
+            "--model",
+            "shc",
+            "--base",
+            DSS,
+            "--v0",
+            "1",
+            "--rigorous",
+        ];
+        args.extend(["--derived", extra[0], extra[1]]);
+        let msg = assert_bad_input(&args);
+        assert!(msg.contains("--derived"), "{msg}");
     }
 }

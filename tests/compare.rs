@@ -17,7 +17,7 @@ use rug::Rational;
 use serde_json::Value;
 use std::io::Write;
 
-mod common;
+use crate::common;
 use common::{bwcl, hunt_crossley_bracket};
 
 const SIGMA_B: f64 = 0.37;

@@ -13,7 +13,7 @@ use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
 use rug::Rational;
 
-mod common;
+use crate::common;
 use common::bwcl;
 
 /// The bracket of the Hunt–Crossley e(σ) for a whole-number σ.

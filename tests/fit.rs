@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use serde_json::Value;
 use std::path::PathBuf;
 
-mod common;
+use crate::common;
 use common::bwcl;
 
 const DSS: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";

@@ -16,7 +16,7 @@ use rand_chacha::ChaCha8Rng;
 use serde_json::Value;
 use std::path::PathBuf;
 
-mod common;
+use crate::common;
 use common::bwcl;
 
 const K: ModelKind = ModelKind::Shc;

@@ -2,7 +2,7 @@
 //! (the Hunt–Crossley limit, compared as exact rationals), against the generating set under
 //! bounded noise (20 seeds), against sampled f64 residuals, and the command's bad input.
 
-mod common;
+use crate::common;
 
 use bwcl::fit::cost::model_cor;
 use bwcl::fit::data::CorData;

@@ -4,7 +4,7 @@
 //! L = (m v0²/k)^(1/(n+1)), T_c = L/v0 and σ = χv0/k, ζ = c/(2√(mk)), c̃ = c/√(mk) are checked
 //! too — and bad input is one line with exit code 2.
 
-mod common;
+use crate::common;
 
 use bwcl::observables::decimal::parse_rational;
 use common::{CLOSED_BITS, around, bwcl};

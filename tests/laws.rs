@@ -16,7 +16,7 @@ use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
 use rug::Rational;
 
-mod common;
+use crate::common;
 use common::bwcl;
 
 fn q(num: i64, den: i64) -> Rational {

@@ -5,8 +5,7 @@
 //! very double (so these are the library's doubles); the table prints 17 digits, within one
 //! double of the bound. Also: the stored decimals of the proof certificate.
 
-#[path = "../proofs/certificate_core.rs"]
-mod certificate_core;
+use crate::certificate_core;
 
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::scaling::{PhysicalParams, nd_from_base, parse_speeds};

@@ -103,7 +103,7 @@ fn precise_enclosures_contain_the_references_and_the_f64_ones_their_midpoints() 
 }
 
 /// The floors of issue #15 (30 digits in ≤ 2 s, 60 in ≤ 30 s on the four Table 1 sets at
-/// v0 = 1): `cargo test --release --test precision -- --ignored --nocapture` prints what is
+/// v0 = 1): `cargo test --release --test suite precision:: -- --ignored --nocapture` prints what is
 /// reached (see the report in benches/RESULTS.md).
 #[test]
 #[ignore]

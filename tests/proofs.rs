@@ -1,14 +1,12 @@
 //! Runs the cores of the computer-assisted proofs in `proofs/` on a small budget, so that
 //! `cargo test` exercises them (the full runs are the `proof-*` binaries: proofs/README.md).
 
-#[path = "../proofs/certificate_core.rs"]
-mod certificate_core;
+use crate::certificate_core;
 #[path = "../proofs/equilibria_core.rs"]
 mod equilibria_core;
 #[path = "../proofs/lyapunov_core.rs"]
 mod lyapunov_core;
-#[path = "../proofs/sym.rs"]
-mod sym;
+// (lyapunov_core names `crate::sym`: the suite declares it at its root, tests/suite.rs)
 
 use bwcl::models::ModelKind;
 use lyapunov_core::{PBox, Which, classification_mismatches, gamma_counterexample, prove};

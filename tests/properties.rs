@@ -8,7 +8,7 @@
 //!
 //! Case budget: 256 cases per property unless `PROPTEST_CASES` says otherwise, from a fixed
 //! seed (reproducible CI) unless `BWCL_PROPTEST_RANDOM=1` (soak: `BWCL_PROPTEST_RANDOM=1
-//! PROPTEST_CASES=100000 cargo test --release --test properties`). Failures are persisted to
+//! PROPTEST_CASES=100000 cargo test --release --test suite properties::`). Failures are persisted to
 //! `tests/proptest-regressions/properties.txt` (relative to the package root, where `cargo test`
 //! runs) and replayed first.
 //!

@@ -12,7 +12,7 @@ use bwcl::observables::band::{
 use bwcl::observables::sets::{Inputs, prove_over_set};
 use inari::Interval;
 
-mod common;
+use crate::common;
 
 const DSS_SHC: &str = "1.43,-1.42,0.632,0.00715,1.31,1.27";
 const DSA_SHC: &str = "0.63,-0.611,0.188,0.00594,1,2.02";

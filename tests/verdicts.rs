@@ -11,7 +11,7 @@ use rug::Rational;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
+use crate::common;
 use common::hunt_crossley_bracket;
 
 /// Seconds a run may take beyond its --time-limit before it counts as a hang (start-up, the

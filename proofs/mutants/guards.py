@@ -11,14 +11,60 @@ script exits 1. The results are in proofs/MUTANTS.md.
 import os, re, shutil, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-# the test targets that check enclosures (those present in this tree)
-TESTS = ["--lib"] + [a for t in ["guards", "rigorous", "references", "outward"]
-                     if os.path.exists(os.path.join(ROOT, "tests", t + ".rs"))
-                     for a in ("--test", t)]
+# the test targets that check enclosures: the library's unit tests and these files of tests/
+TESTS = ["--lib", "--test", "guards", "--test", "rigorous", "--test", "references",
+         "--test", "outward"]
+
+
+def commands(tests):
+    """The `cargo test` argument lists that run `tests`, written as targets and filters
+    (`--lib`, `--test FILE`, test-name filters). The files of tests/ are modules of one program,
+    tests/suite.rs (but cancel.rs): `--test FILE` runs `--test suite` with the filters given,
+    or with `FILE::` when none is. The library's unit tests run in a command of their own (a
+    module filter would leave them out)."""
+    lib, files, cancel, filters = False, [], False, []
+    it = iter(tests)
+    for a in it:
+        if a == "--lib":
+            lib = True
+        elif a == "--test":
+            f = next(it)
+            if f == "cancel":
+                cancel = True
+            else:
+                files.append(f)
+        elif a != "--":
+            filters.append(a)
+    out = []
+    if lib:
+        out.append(["--lib", "--", *filters])
+    if files:
+        out.append(["--test", "suite", "--", *(filters or [f + "::" for f in files])])
+    if cancel:
+        out.append(["--test", "cancel", "--", *filters])
+    return out
 
 # (name, file, [(exact text, replacement)], what it removes[, the cargo test arguments that
 # must see it: TESTS when not given])
 GUARDS = [
+    # issue #34: the derived outputs' maxima enclosed on the proved flow (observables/derived.rs)
+    ("derived-lower-inside", "src/observables/derived.rs",
+     [("        if t <= ts_lo {\n", "        if t <= ts.hi() {\n")],
+     "a maximum's lower bound read only at times ≤ inf T_s (inside [0, T_s] for every T_s)",
+     ["--lib", "derived"]),
+    ("derived-upper-to-sup", "src/observables/derived.rs",
+     [("        let b = p.t1().min(ts_hi);", "        let b = p.t1().min(ts_lo);")],
+     "a maximum's upper bound covers [0, sup T_s]",
+     ["--lib", "derived"]),
+    ("derived-empty-upper", "src/observables/derived.rs",
+     [("    if x.is_empty() { f64::INFINITY } else { x.hi() }", "    x.hi()")],
+     "an empty enclosure bounds nothing from above (+∞, not inari's −∞)",
+     ["--lib", "derived"]),
+    ("derived-mvf-rate", "src/observables/derived.rs",
+     [("let mvf = centre + (t - mid) * q.rate(m, &bx);",
+       "let mvf = centre + (t - mid) * (q.rate(m, &bx) * I::from_exact_f64(0.5));")],
+     "the mean-value form's slope ∇q·f over the whole cell (halved: too narrow a bound)",
+     ["--lib", "derived"]),
     # issue #33: a classical law's physical parameters to its nondimensional model
     # (models/classical.rs), checked against the closed forms in seconds (tests/law_cor.rs)
     ("law-sigma-physical", "src/models/classical.rs",
@@ -373,7 +419,7 @@ def run(name, path, edits, what, tests=None):
     tmp = tempfile.mkdtemp(prefix=f"bwcl-guard-{name}-")
     try:
         for entry in ["Cargo.toml", "Cargo.lock", "src", "tests", "benches", "proofs",
-                      "paper_repro", ".cargo"]:
+                      "paper_repro", ".cargo", "bindings"]:
             src = os.path.join(ROOT, entry)
             if os.path.isdir(src):
                 shutil.copytree(src, os.path.join(tmp, entry))
@@ -392,9 +438,11 @@ def run(name, path, edits, what, tests=None):
         # a mutant where a later ordinary build believes it is up to date
         env["CARGO_TARGET_DIR"] = os.path.join(ROOT, "target", "guard-mutants")
         t0 = time.time()
-        p = subprocess.run(["cargo", "test", "--release", "--no-fail-fast", *(tests or TESTS)],
-                           cwd=tmp, env=env, capture_output=True, text=True)
-        out = p.stdout + p.stderr
+        out = ""
+        for args in commands(tests or TESTS):
+            p = subprocess.run(["cargo", "test", "--release", "--no-fail-fast", *args],
+                               cwd=tmp, env=env, capture_output=True, text=True)
+            out += p.stdout + p.stderr
         failed = sorted(set(re.findall(r"^test (\S+) \.\.\. FAILED", out, re.M)))
         dt = time.time() - t0
         if "could not compile" in out:

@@ -60,6 +60,7 @@ __version__ = _bwcl.__version__
 __all__ = [
     "cor",
     "cor_rigorous",
+    "DERIVED",
     "trajectory",
     "loop",
     "cost",
@@ -200,6 +201,18 @@ def _named(p: Any, what: str, ranges: bool) -> str:
     return ",".join(f"{k}={_token(v, what, ranges)}" for k, v in p.items())
 
 
+def _flag(x: Any, name: str) -> bool:
+    """A switch: True or False (NumPy's bools too), anything else a TypeError."""
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    raise TypeError(f"{name} must be True or False, not {type(x).__name__} {_frames_repr(x)}")
+
+
+def _frames_repr(x: Any) -> str:
+    text = repr(x)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
 def _source(model: Any, base: Any, nd: Any, physical: Any, ranges: bool) -> list:
     if not isinstance(model, str):
         raise TypeError(
@@ -298,6 +311,10 @@ def _float_engine(rtol: Any, atol: Any, max_step: Any, horizon: Any) -> list:
 # ---------------------------------------------------------------------------------------------
 # results
 
+#: The derived outputs (``derived=True``): nondimensional, then SI (with ``physical``).
+DERIVED = ("peak_force", "max_indentation", "energy_lost", "peak_force_newtons",
+           "max_indentation_m", "energy_lost_joules")
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class CorResult:
@@ -316,6 +333,11 @@ class CorResult:
         classical law a dict of (n,) arrays by name (sigma, n, zeta or c, nondimensional).
     error : per case, None or why the case could not be integrated.
     ts_seconds, t_c : with ``physical``: T_s·T_c and the time scale T_c [s].
+    peak_force, max_indentation, energy_lost : with ``derived=True``: the peak contact force
+        F_max = max F over [0, T_s], the maximum indentation δ_max = max(−X) and the kinetic
+        energy lost ΔE = (1 − e²)/2, nondimensional (NaN where not computed: ``derived_reason``).
+    peak_force_newtons, max_indentation_m, energy_lost_joules : with ``derived=True`` and
+        ``physical``: the same in N, m and J (ΔE = ½ m v0² (1 − e²)).
     seconds : wall time of the computation (the cases only, as the CLI's ``--timing``).
     """
 
@@ -333,6 +355,13 @@ class CorResult:
     horizon: float = 100.0
     seconds: float = 0.0
     threads: int = 0
+    peak_force: Optional[np.ndarray] = None
+    max_indentation: Optional[np.ndarray] = None
+    energy_lost: Optional[np.ndarray] = None
+    peak_force_newtons: Optional[np.ndarray] = None
+    max_indentation_m: Optional[np.ndarray] = None
+    energy_lost_joules: Optional[np.ndarray] = None
+    derived_reason: Optional[Tuple[Optional[str], ...]] = None
 
     @property
     def ok(self) -> np.ndarray:
@@ -355,13 +384,13 @@ class CorResult:
 
     def to_pandas(self) -> Any:
         """One row per case (``set``, ``speed`` indices for a grid of sets × speeds): v0, ts,
-        e, separated, nfev, steps, [ts_seconds, t_c,] the parameters of the case and error.
-        Needs pandas."""
+        e, separated, nfev, steps, [ts_seconds, t_c,] [the derived outputs,] the parameters of
+        the case and error. Needs pandas."""
         pd = _frames.pandas()
         shape = np.shape(self.e)
         n = int(np.size(self.e))
         cols = _frames.grid_index(shape)
-        for name in ("v0", "ts", "e", "separated", "nfev", "steps", "ts_seconds", "t_c"):
+        for name in ("v0", "ts", "e", "separated", "nfev", "steps", "ts_seconds", "t_c") + DERIVED:
             if getattr(self, name) is not None:
                 cols[name] = _frames.flat(getattr(self, name))
         cols.update(_frames.params_columns(self.params, n, False))
@@ -425,6 +454,12 @@ class RigorousResult:
         f64-interval engine, 128/192/256 where the precision fallback decided it.
     fallback : per case None, or the precision fallback's runs as
         ``FallbackRun(bits, seconds, proved, reason)``, in order.
+    peak_force, max_indentation, energy_lost : with ``derived=True``: (n, 2) enclosures of
+        F_max = max F over [0, T_s], δ_max = max(−X) over [0, T_s] and ΔE = (1 − e²)/2 (NaN
+        where not computed: ``derived_reason``); ``derived_text[name]`` the decimals rounded
+        outward.
+    peak_force_newtons, max_indentation_m, energy_lost_joules : with ``derived=True`` and
+        ``physical``: the same in N, m and J.
     """
 
     model: str
@@ -454,6 +489,15 @@ class RigorousResult:
     #: (names as the CLI's: the parameters of the source given, and v0), None where the case
     #: was not proved
     sensitivities: Tuple[Optional[dict], ...] = ()
+    peak_force: Optional[np.ndarray] = None
+    max_indentation: Optional[np.ndarray] = None
+    energy_lost: Optional[np.ndarray] = None
+    peak_force_newtons: Optional[np.ndarray] = None
+    max_indentation_m: Optional[np.ndarray] = None
+    energy_lost_joules: Optional[np.ndarray] = None
+    #: with ``derived=True``: per case {name: (lo, hi) decimals rounded outward, or None}
+    derived_text: Tuple[Optional[dict], ...] = ()
+    derived_reason: Optional[Tuple[Optional[str], ...]] = None
 
     def __len__(self) -> int:
         return len(self.proved)
@@ -479,8 +523,8 @@ class RigorousResult:
 
     def to_pandas(self, floats: bool = False) -> Any:
         """One row per case (``set``, ``speed`` for a grid): the enclosures of v0, T_s and e as
-        ``*_lo``/``*_hi`` and their widths, status, separated, bits, reason and the enclosures
-        of the parameters. By default the bounds are the outward decimals (text: each reads
+        ``*_lo``/``*_hi`` and their widths, [the derived outputs' enclosures,] status,
+        separated, bits, reason and the enclosures of the parameters. By default the bounds are the outward decimals (text: each reads
         back to its double, ``df.e_lo.astype(float)``), so that printing the frame prints
         bounds; ``floats=True`` gives float64 columns (pandas displays those rounded to
         nearest). Needs pandas."""
@@ -489,7 +533,7 @@ class RigorousResult:
         depth = len(shape) - 1
         n = int(np.size(self.proved))
         cols = _frames.grid_index(shape)
-        for name in ("v0", "ts", "e", "ts_seconds"):
+        for name in ("v0", "ts", "e", "ts_seconds") + DERIVED:
             b = getattr(self, name)
             if b is None:
                 continue
@@ -707,6 +751,7 @@ def cor(
     horizon: float = 100.0,
     threads: Optional[int] = None,
     progress: Union[None, bool, Callable[[int, int], Any]] = None,
+    derived: bool = False,
 ) -> CorResult:
     """T_s (eq:main_t_s) and the coefficient of restitution e = V(T_s) (eq:main_cor) on the
     f64 DOP853 engine, one case per impact speed.
@@ -738,6 +783,9 @@ def cor(
     progress : True for a progress bar (tqdm when installed), or a callable receiving
         ``(done, total)`` cases (at most every 0.1 s, and at the end); an exception it raises
         stops the call and is raised.
+    derived : also the peak contact force, the maximum indentation and the kinetic energy
+        lost (``result.peak_force``, ``max_indentation``, ``energy_lost``; in N, m and J too
+        with ``physical``), on the same dense output.
 
     Returns
     -------
@@ -756,6 +804,8 @@ def cor(
     base, nd, physical, sets = _sets.source_sets(model, base, nd, physical, False)
     argv = ["cor"] + _source(model, base, nd, physical, False)
     argv += _float_engine(rtol, atol, max_step, horizon)
+    if _flag(derived, "derived"):
+        argv.append("--derived")
     arr = tokens = None
     if v0 is not None:
         arr = _speeds_array(v0)
@@ -785,6 +835,8 @@ def _cor_result(d: dict) -> CorResult:
         horizon=d["horizon"],
         seconds=d["seconds"],
         threads=d["threads"],
+        **{name: d.get(name) for name in DERIVED},
+        derived_reason=None if "derived_reason" not in d else tuple(d["derived_reason"]),
     )
 
 
@@ -806,6 +858,7 @@ def cor_rigorous(
     time_limit: float = 300.0,
     sensitivities: bool = False,
     progress: Union[None, bool, Callable[[int, int], Any]] = None,
+    derived: bool = False,
 ) -> RigorousResult:
     """Proved enclosures of T_s (eq:main_t_s) and e = V(T_s) (eq:main_cor) from the interval
     Taylor engine, one case per impact speed.
@@ -852,6 +905,12 @@ def cor_rigorous(
         parameters and v0), at its value or over its range (``result.sensitivities``; the
         Bouc–Wen models, not with ``digits``).
     progress : as :func:`cor` (cases proved or not, as they end).
+    derived : also enclose the peak contact force, the maximum indentation (max over
+        [0, T_s], by a branch and bound on the proved flow) and the kinetic energy lost
+        (``result.peak_force``, ``max_indentation``, ``energy_lost`` as (n, 2) bounds; in N, m
+        and J too with ``physical``). Point cases on the f64-interval engine: a range, a case
+        decided by the precision fallback or without separation has NaN bounds and the reason
+        in ``derived_reason``; not with ``digits``.
 
     A case proved to have no separation before the horizon (T_s > horizon) has status
     "proved", ``separated`` False, NaN bounds and that statement in ``reason``.
@@ -876,6 +935,10 @@ def cor_rigorous(
         argv += [f"--digits={_num(digits, 'digits')}"]
     if sensitivities:
         argv.append("--sensitivities")
+    if _flag(derived, "derived"):
+        if digits is not None:
+            raise ValueError("derived outputs are proved on the f64-interval engine: not with digits")
+        argv.append("--derived")
     argv += [f"--time-limit={_num(time_limit, 'time_limit')}"]
     tokens = None if v0 is None else _speed_tokens(v0, True)
     _sets.check_size(sets, len(tokens or ()))
@@ -920,6 +983,12 @@ def cor_rigorous(
             }
             for case in d.get("sensitivities", ())
         ),
+        **{name: d[name] for name in DERIVED if name in d},
+        derived_text=tuple(
+            {name: d[name + "_text"][i] for name in DERIVED if name in d}
+            for i in range(n)
+        ) if "derived_reason" in d else (),
+        derived_reason=None if "derived_reason" not in d else tuple(d["derived_reason"]),
     )
     flat = res
     res = _sets.reshape(res, sets, nd is not None)

@@ -69,6 +69,13 @@ class CorResult:
     horizon: float
     seconds: float
     threads: int
+    peak_force: Optional[npt.NDArray[np.float64]]
+    max_indentation: Optional[npt.NDArray[np.float64]]
+    energy_lost: Optional[npt.NDArray[np.float64]]
+    peak_force_newtons: Optional[npt.NDArray[np.float64]]
+    max_indentation_m: Optional[npt.NDArray[np.float64]]
+    energy_lost_joules: Optional[npt.NDArray[np.float64]]
+    derived_reason: Optional[Tuple[Optional[str], ...]]
     @property
     def ok(self) -> npt.NDArray[np.bool_]: ...
     def __len__(self) -> int: ...
@@ -108,6 +115,14 @@ class RigorousResult:
     order: int
     seconds: float
     threads: int
+    peak_force: Optional[npt.NDArray[np.float64]]
+    max_indentation: Optional[npt.NDArray[np.float64]]
+    energy_lost: Optional[npt.NDArray[np.float64]]
+    peak_force_newtons: Optional[npt.NDArray[np.float64]]
+    max_indentation_m: Optional[npt.NDArray[np.float64]]
+    energy_lost_joules: Optional[npt.NDArray[np.float64]]
+    derived_text: Tuple[Optional[Dict[str, Optional[Tuple[str, str]]]], ...]
+    derived_reason: Optional[Tuple[Optional[str], ...]]
     bits: Tuple[int, ...]
     fallback: Tuple[Optional[Tuple[FallbackRun, ...]], ...]
     sensitivities: Tuple[Optional[Dict[str, Sensitivity]], ...]
@@ -194,6 +209,7 @@ def cor(
     horizon: float = ...,
     threads: Optional[int] = ...,
     progress: Union[None, bool, Callable[[int, int], Any]] = ...,
+    derived: bool = ...,
 ) -> CorResult: ...
 def cor_rigorous(
     model: str,
@@ -213,6 +229,7 @@ def cor_rigorous(
     time_limit: float = ...,
     sensitivities: bool = ...,
     progress: Union[None, bool, Callable[[int, int], Any]] = ...,
+    derived: bool = ...,
 ) -> RigorousResult: ...
 def trajectory(
     model: str,

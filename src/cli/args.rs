@@ -880,6 +880,12 @@ pub struct CorArgs {
     /// (JSON: a field "sensitivities").
     #[arg(long, requires = "rigorous")]
     pub sensitivities: bool,
+    /// Also the derived outputs of each collision: the peak contact force F_max, the maximum
+    /// indentation δ_max (max of −X) over [0, T_s], and the kinetic energy lost
+    /// ΔE = (1 − e²)/2 — in SI too with --physical (N, m, J = ½ m v0² (1 − e²)). Proved with
+    /// --rigorous (point cases; a range is refused), on the dense output otherwise.
+    #[arg(long)]
+    pub derived: bool,
     /// With --rigorous: a case the f64-interval engine cannot decide (grazing or undecidable
     /// separation, an enclosure grown too wide, a crossing not proved) is run again on MPFR
     /// intervals at 128, 192, then 256 bits, up to B bits; 0 turns this off. The output names

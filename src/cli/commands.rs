@@ -6,13 +6,17 @@
 
 use super::args::{Cli, Command, CorArgs, TrajectoryArgs};
 use super::input::{self, Case};
-use super::output::{self, FloatRow, ParamsOut, RigorousRow, RowParams, bounds, num, width};
+use super::output::{
+    self, DerivedOut, FloatRow, JsonPair, ParamsOut, RigorousRow, RowParams, bounds, num, width,
+};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::engines::taylor::RigorError;
 use bwcl::engines::taylor::TaylorOptions;
+use bwcl::models::scaling::Scales;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use bwcl::observables::derived;
 use bwcl::observables::precision::{self, FallbackBudget, outward_f64};
-use bwcl::observables::rigorous::rigorous_impact;
+use bwcl::observables::rigorous::{Enclosure, rigorous_impact};
 use bwcl::observables::trajectory::{Units, trajectory};
 use bwcl::observables::{FloatOptions, impact};
 use bwcl::observables::{sets, split};
@@ -56,6 +60,16 @@ pub fn run(cli: Cli) -> Result<i32, CliError> {
 }
 
 fn cor(a: &CorArgs) -> Result<i32, CliError> {
+    if a.derived && (a.digits.is_some() || a.band.is_some()) {
+        let with = if a.band.is_some() {
+            "--band"
+        } else {
+            "--digits"
+        };
+        return Err(CliError::Input(format!(
+            "--derived is not offered with {with} (the derived outputs come from the f64 engines' runs of point cases)"
+        )));
+    }
     if let Some(d) = a.digits {
         input::bouc_wen_only(a.params.model, "--digits")?;
         if !a.engine.rigorous {
@@ -89,6 +103,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
                 &opts,
                 input::pieces(&a.engine),
                 a.sensitivities,
+                a.derived,
                 &fallback,
                 a.engine.time_limit,
             )
@@ -124,7 +139,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let start = std::time::Instant::now();
         let rows: Vec<FloatRow> = cases
             .par_iter()
-            .map(|c| float_row(kind, c, &opts))
+            .map(|c| float_row(kind, c, &opts, a.derived))
             .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| r.error.is_some()).count();
@@ -224,10 +239,20 @@ fn params_interval(p: &NdParams<Interval>) -> ParamsOut<[f64; 2]> {
     }
 }
 
-/// T_s and e of one case on the float engine.
-pub(crate) fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> FloatRow {
-    let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts)
-        .map(|r| (r.ts, r.e, r.stats)));
+/// T_s and e of one case on the float engine (and with `derived`, F_max, δ_max, ΔE).
+pub(crate) fn float_row(
+    kind: ModelKind,
+    c: &Case<f64>,
+    opts: &FloatOptions,
+    derived: bool,
+) -> FloatRow {
+    let mut out = None;
+    let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts).map(|r| {
+        if derived {
+            out = Some(float_derived(&m, opts, r.ts, r.e, c.scales.as_ref()));
+        }
+        (r.ts, r.e, r.stats)
+    }));
     let t_c = c.scales.as_ref().map(|s| s.t_c);
     let mut row = FloatRow::new(
         kind.name(),
@@ -237,7 +262,53 @@ pub(crate) fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions) -> 
         RowParams::BoucWen(params_f64(&c.params)),
     );
     settle_float(&mut row, res);
+    row.derived = out;
     row
+}
+
+/// The derived outputs of a float run (T_s = `ts`, e = `e`), in SI too with `scales`.
+pub(crate) fn float_derived<M: CollisionModel<f64, N>, const N: usize>(
+    m: &M,
+    opts: &FloatOptions,
+    ts: Option<f64>,
+    e: f64,
+    scales: Option<&Scales<f64>>,
+) -> DerivedOut<f64> {
+    let Some(ts) = ts else {
+        return DerivedOut::not("no separation before the horizon");
+    };
+    match derived::derived_float(m, opts, ts, e) {
+        Ok(d) => DerivedOut::of(&d, scales.map(|s| d.in_si(s)).as_ref(), |x| *x),
+        Err(err) => DerivedOut::not(err.to_string()),
+    }
+}
+
+/// The derived outputs of a proved run, enclosed on its flow, in SI too with `scales`.
+pub(crate) fn proved_derived<M: CollisionModel<Interval, N>, const N: usize>(
+    m: &M,
+    enc: &Enclosure<N>,
+    scales: Option<&Scales<Interval>>,
+) -> DerivedOut<JsonPair> {
+    match derived::derived_rigorous(m, enc, &derived::PeakOptions::default()) {
+        Ok(d) => DerivedOut::of(&d, scales.map(|s| d.in_si(s)).as_ref(), |x| {
+            JsonPair(bounds(*x))
+        }),
+        Err(why) => DerivedOut::not(why),
+    }
+}
+
+/// Why a proved row has no derived outputs: a range, the precision fallback, no separation.
+pub(crate) fn derived_missing(row: &mut RigorousRow, ranged: bool) {
+    if row.derived.is_some() || !row.proved {
+        return;
+    }
+    row.derived = Some(DerivedOut::not(if !row.separated {
+        "no separation before the horizon"
+    } else if ranged {
+        "computed for point cases only, not over a range of inputs"
+    } else {
+        "computed on the f64-interval engine only, not by the precision fallback"
+    }));
 }
 
 /// A float row's result: T_s (in seconds too when the row has the time scale) and e, or why
@@ -276,9 +347,11 @@ pub(crate) fn rigorous_row(
     opts: &TaylorOptions,
     pieces: usize,
     sensitivities: bool,
+    derived: bool,
     fallback: &FallbackBudget,
     time_limit: Option<f64>,
 ) -> RigorousRow {
+    let mut out = None;
     // inputs given as ranges (wider than the enclosure of a decimal): proved over the whole
     // set, with the solution's dependence on them carried by the engine
     let ranged = c.inputs.values().iter().any(sets::is_range);
@@ -306,8 +379,14 @@ pub(crate) fn rigorous_row(
             (r.ts, r.e)
         })
     } else {
-        with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts)
-            .map(|enc| (enc.ts, enc.e)))
+        with_model!(kind, c.params.clone(), |m| rigorous_impact(&m, opts).map(
+            |enc| {
+                if derived {
+                    out = Some(proved_derived(&m, &enc, c.scales.as_ref()));
+                }
+                (enc.ts, enc.e)
+            }
+        ))
     };
     let mut row = RigorousRow {
         range,
@@ -357,7 +436,14 @@ pub(crate) fn rigorous_row(
         }
         (res, _) => res,
     };
+    let fell_back = row.fallback.is_some();
     settle_rigorous(&mut row, res, c.scales.as_ref().map(|s| s.t_c), time_limit);
+    if derived {
+        if !fell_back {
+            row.derived = out;
+        }
+        derived_missing(&mut row, ranged);
+    }
     if sensitivities {
         let names = c.inputs.names();
         row.sensitivities = Some(

@@ -9,7 +9,8 @@
 use super::CliError;
 use super::args::{CorArgs, TrajectoryArgs};
 use super::commands::{
-    Csv, Curve, float_curve, prove_rows, rigorous_curve, settle_float, settle_rigorous,
+    Csv, Curve, derived_missing, float_curve, float_derived, prove_rows, proved_derived,
+    rigorous_curve, settle_float, settle_rigorous,
 };
 use super::input::{self, LawCase};
 use super::output::{FloatRow, RigorousRow, RowParams, bounds};
@@ -56,16 +57,23 @@ fn named<R: bwcl::arith::Real, T>(p: &LawParams<R>, f: impl Fn(R) -> T) -> RowPa
 }
 
 /// T_s and e of one case on the float engine.
-pub fn float_row(law: Law, c: &LawCase<f64>, opts: &FloatOptions) -> FloatRow {
+pub fn float_row(law: Law, c: &LawCase<f64>, opts: &FloatOptions, derived: bool) -> FloatRow {
     let t_c = c.scales.as_ref().map(|s| s.t_c);
     let mut row = FloatRow::new(law.key(), c.v0, t_c, opts.horizon, named(&c.nd, |x| x));
+    let mut out = None;
     match c.nd.model() {
         Ok(model) => settle_float(
             &mut row,
-            with_law!(&model, |m| impact(m, opts).map(|r| (r.ts, r.e, r.stats))),
+            with_law!(&model, |m| impact(m, opts).map(|r| {
+                if derived {
+                    out = Some(float_derived(m, opts, r.ts, r.e, c.scales.as_ref()));
+                }
+                (r.ts, r.e, r.stats)
+            })),
         ),
         Err(why) => row.error = Some(why),
     }
+    row.derived = out;
     row
 }
 
@@ -75,8 +83,10 @@ pub fn rigorous_row(
     law: Law,
     c: &LawCase<Interval>,
     opts: &TaylorOptions,
+    derived: bool,
     time_limit: Option<f64>,
 ) -> RigorousRow {
+    let mut out = None;
     let mut row = RigorousRow::new(
         law.key(),
         c.v0.map(bounds),
@@ -88,11 +98,21 @@ pub fn rigorous_row(
     match c.nd.model() {
         Ok(model) => settle_rigorous(
             &mut row,
-            with_law!(&model, |m| rigorous_impact(m, opts).map(|r| (r.ts, r.e))),
+            with_law!(&model, |m| rigorous_impact(m, opts).map(|r| {
+                if derived {
+                    out = Some(proved_derived(m, &r, c.scales.as_ref()));
+                }
+                (r.ts, r.e)
+            })),
             c.scales.as_ref().map(|s| s.t_c),
             time_limit,
         ),
         Err(why) => row.reason = Some(why),
+    }
+    if derived {
+        row.derived = out;
+        // (a law's range is proved whole: its derived outputs hold over the range)
+        derived_missing(&mut row, false);
     }
     row
 }
@@ -107,7 +127,7 @@ pub fn cor(
         let opts = input::taylor_options(&a.engine)?;
         let cases = input::law_cases::<Interval>(&a.params, law)?;
         let (rows, elapsed) = prove_rows(&cases, a.engine.time_limit, |c| {
-            rigorous_row(law, c, &opts, a.engine.time_limit)
+            rigorous_row(law, c, &opts, a.derived, a.engine.time_limit)
         });
         let failed = rows.iter().filter(|r| !r.proved).count();
         Ok((
@@ -120,7 +140,10 @@ pub fn cor(
         let opts = input::float_options(&a.engine)?;
         let cases = input::law_cases::<f64>(&a.params, law)?;
         let start = std::time::Instant::now();
-        let rows: Vec<FloatRow> = cases.par_iter().map(|c| float_row(law, c, &opts)).collect();
+        let rows: Vec<FloatRow> = cases
+            .par_iter()
+            .map(|c| float_row(law, c, &opts, a.derived))
+            .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| r.error.is_some()).count();
         Ok((

@@ -32,6 +32,82 @@ pub enum RowParams<T> {
     Law(std::collections::BTreeMap<&'static str, T>),
 }
 
+/// The derived outputs of a case (--derived, [`bwcl::observables::derived`]): F_max, δ_max and
+/// ΔE nondimensional, and in SI (N, m, J) for --physical; `reason` where they were not
+/// computed. `T` is f64 for the float engine, [`JsonPair`] (bounds rounded outward) for the
+/// rigorous one.
+#[derive(Serialize, Clone, Debug)]
+pub struct DerivedOut<T> {
+    pub peak_force: Option<T>,
+    pub max_indentation: Option<T>,
+    pub energy_lost: Option<T>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_force_newtons: Option<T>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_indentation_m: Option<T>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_lost_joules: Option<T>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+}
+
+impl<T: Copy> DerivedOut<T> {
+    /// Not computed, for `reason`.
+    pub fn not(reason: impl Into<String>) -> Self {
+        DerivedOut {
+            peak_force: None,
+            max_indentation: None,
+            energy_lost: None,
+            peak_force_newtons: None,
+            max_indentation_m: None,
+            energy_lost_joules: None,
+            reason: Some(reason.into()),
+        }
+    }
+
+    /// From the nondimensional values and, for --physical, the SI ones.
+    pub fn of<R>(
+        d: &bwcl::observables::derived::Derived<R>,
+        si: Option<&bwcl::observables::derived::Derived<R>>,
+        f: impl Fn(&R) -> T,
+    ) -> Self {
+        DerivedOut {
+            peak_force: Some(f(&d.peak_force)),
+            max_indentation: Some(f(&d.max_indentation)),
+            energy_lost: Some(f(&d.energy_lost)),
+            peak_force_newtons: si.map(|s| f(&s.peak_force)),
+            max_indentation_m: si.map(|s| f(&s.max_indentation)),
+            energy_lost_joules: si.map(|s| f(&s.energy_lost)),
+            reason: None,
+        }
+    }
+
+    /// The six values in column order (nondimensional, then SI).
+    pub fn values(&self) -> [Option<T>; 6] {
+        [
+            self.peak_force,
+            self.max_indentation,
+            self.energy_lost,
+            self.peak_force_newtons,
+            self.max_indentation_m,
+            self.energy_lost_joules,
+        ]
+    }
+}
+
+/// The derived columns' names, nondimensional then SI (`physical`).
+pub fn derived_columns(physical: bool) -> &'static [&'static str] {
+    let all: &'static [&'static str] = &[
+        "peak_force",
+        "max_indentation",
+        "energy_lost",
+        "peak_force_newtons",
+        "max_indentation_m",
+        "energy_lost_joules",
+    ];
+    if physical { all } else { &all[..3] }
+}
+
 /// One float case of `cor`.
 #[derive(Serialize, Clone, Debug)]
 pub struct FloatRow {
@@ -56,6 +132,9 @@ pub struct FloatRow {
     /// Why the integration failed (the case is then not a result).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// With --derived: F_max, δ_max, ΔE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub derived: Option<DerivedOut<f64>>,
 }
 
 impl FloatRow {
@@ -81,6 +160,7 @@ impl FloatRow {
             horizon,
             params,
             error: None,
+            derived: None,
         }
     }
 }
@@ -132,6 +212,9 @@ pub struct RigorousRow {
     /// note on stderr otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<RangeOut>,
+    /// With --derived: enclosures of F_max, δ_max, ΔE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub derived: Option<DerivedOut<JsonPair>>,
 }
 
 impl RigorousRow {
@@ -163,6 +246,7 @@ impl RigorousRow {
             bits: 53,
             fallback: None,
             range: None,
+            derived: None,
         }
     }
 }
@@ -253,7 +337,8 @@ fn json_bound<S: Serializer>(x: f64, dir: Rounding, s: S) -> Result<S::Ok, S::Er
 }
 
 /// An enclosure [lo, hi] rounded outward, as a JSON array of two numbers.
-struct JsonPair([f64; 2]);
+#[derive(Clone, Copy, Debug)]
+pub struct JsonPair(pub [f64; 2]);
 
 impl Serialize for JsonPair {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
@@ -382,6 +467,8 @@ fn opt_num(x: Option<f64>) -> String {
 pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError> {
     let physical = rows.iter().any(|r| r.ts_seconds.is_some());
     let any_error = rows.iter().any(|r| r.error.is_some());
+    let derived = rows.iter().any(|r| r.derived.is_some());
+    let ncols = derived_columns(physical).len();
     match format {
         Format::Json => json(rows),
         Format::Csv => {
@@ -390,6 +477,9 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
                 head.extend(["ts_seconds", "t_c"]);
             }
             head.extend(["nfev", "steps"]);
+            if derived {
+                head.extend(derived_columns(physical));
+            }
             if any_error {
                 head.push("error");
             }
@@ -407,6 +497,10 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
                 }
                 c.push(r.nfev.to_string());
                 c.push(r.steps.to_string());
+                if derived {
+                    let v = r.derived.as_ref().map(|d| d.values()).unwrap_or_default();
+                    c.extend(v[..ncols].iter().map(|x| opt_num(*x)));
+                }
                 if any_error {
                     c.push(r.error.clone().unwrap_or_default());
                 }
@@ -420,6 +514,9 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
                 head.push("ts_seconds");
             }
             head.extend(["nfev", "steps"]);
+            if derived {
+                head.extend(derived_columns(physical));
+            }
             let body: Vec<Vec<String>> = rows
                 .iter()
                 .map(|r| {
@@ -447,6 +544,10 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
                     }
                     c.push(r.nfev.to_string());
                     c.push(r.steps.to_string());
+                    if derived {
+                        let v = r.derived.as_ref().map(|d| d.values()).unwrap_or_default();
+                        c.extend(v[..ncols].iter().map(|x| opt_num(*x)));
+                    }
                     c
                 })
                 .collect();
@@ -460,6 +561,14 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
     let physical = rows.iter().any(|r| r.ts_seconds.is_some());
     // a bits column when the fallback ran (the f64-interval engine's 53 otherwise implied)
     let bits = rows.iter().any(|r| r.fallback.is_some());
+    let derived = rows.iter().any(|r| r.derived.is_some());
+    let dcols = derived_columns(physical);
+    let derived_of = |r: &RigorousRow| {
+        r.derived
+            .as_ref()
+            .map(|d| d.values().map(|x| x.map(|p| p.0)))
+            .unwrap_or_default()
+    };
     match format {
         Format::Json => json(rows),
         Format::Csv => {
@@ -472,6 +581,13 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             }
             if bits {
                 head.push("bits");
+            }
+            let dheads: Vec<String> = dcols
+                .iter()
+                .flat_map(|c| [format!("{c}_lo"), format!("{c}_hi")])
+                .collect();
+            if derived {
+                head.extend(dheads.iter().map(String::as_str));
             }
             head.push("reason");
             let pair = |b: Option<[f64; 2]>| match b {
@@ -493,7 +609,18 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                 if bits {
                     c.push(r.bits.to_string());
                 }
-                c.push(r.reason.clone().unwrap_or_default());
+                if derived {
+                    for x in &derived_of(r)[..dcols.len()] {
+                        c.extend(pair(*x));
+                    }
+                }
+                // (a derived output not computed says why after the case's own reason)
+                let why = r.derived.as_ref().and_then(|d| d.reason.as_deref());
+                c.push(match (r.reason.as_deref(), why) {
+                    (Some(a), Some(b)) => format!("{a}; derived outputs: {b}"),
+                    (None, Some(b)) => format!("derived outputs: {b}"),
+                    (a, None) => a.unwrap_or_default().to_string(),
+                });
                 c
             });
             csv(&head, body)
@@ -505,6 +632,9 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             }
             if bits {
                 head.push("bits");
+            }
+            if derived {
+                head.extend(dcols);
             }
             let body: Vec<Vec<String>> = rows
                 .iter()
@@ -540,6 +670,13 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                             }
                             if bits {
                                 c.push(r.bits.to_string());
+                            }
+                            if let Some(why) = r.derived.as_ref().and_then(|d| d.reason.as_ref()) {
+                                c.push(format!("derived outputs not proved: {why}"));
+                            } else if derived {
+                                for x in &derived_of(r)[..dcols.len()] {
+                                    c.push(x.map(interval_text).unwrap_or_default());
+                                }
                             }
                         }
                         // proved without separation: the reason is the result

@@ -6,10 +6,13 @@
 //! - [`trajectory`]: sampled trajectories and loops (F against X), nondimensional or physical;
 //! - [`rigorous`]: proved enclosures of T_s and e from the rigorous engine;
 //! - [`precision`]: the same at a chosen precision (D digits, MPFR intervals);
-//! - [`decimal`]: their bounds as decimals rounded outward, exactly.
+//! - [`decimal`]: their bounds as decimals rounded outward, exactly;
+//! - [`derived`]: the peak force, the maximum indentation and the energy lost, float and
+//!   proved.
 
 pub mod band;
 pub mod decimal;
+pub mod derived;
 pub mod precision;
 pub mod restitution;
 pub mod rigorous;

@@ -7,7 +7,7 @@ use super::cli::args::{Command, CorArgs, ParamArgs};
 use super::cli::commands::float_row;
 use super::cli::input;
 use super::cli::law_runs;
-use super::cli::output::RowParams;
+use super::cli::output::{FloatRow, RowParams, derived_columns};
 use super::run::{compute, compute_rows_progress, parse, py_error, stopped};
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::PyValueError;
@@ -105,6 +105,8 @@ pub fn put_params<T: Copy, const W: usize>(
 ) -> PyResult<()> {
     let mut six = Vec::new();
     let mut named: std::collections::BTreeMap<&str, Vec<f64>> = Default::default();
+    // a law's rows give a dict, empty for Hooke's law (no nondimensional parameter)
+    let law = params.iter().any(|p| matches!(p, RowParams::Law(_)));
     for p in params {
         match p {
             RowParams::BoucWen(p) => six.extend(
@@ -119,7 +121,7 @@ pub fn put_params<T: Copy, const W: usize>(
             }
         }
     }
-    if named.is_empty() {
+    if !law {
         return put_f64_2d(d, "params", six, 6 * W);
     }
     let out = PyDict::new(d.py());
@@ -155,13 +157,15 @@ pub fn cor<'py>(
         Some(law) => {
             let cases = per_list(py, &a, &lists, &sets, |p| input::law_cases::<f64>(p, law))?;
             compute_rows_progress(py, threads, &cases, progress, |c| {
-                law_runs::float_row(law, c, &opts)
+                law_runs::float_row(law, c, &opts, a.derived)
             })?
         }
         None => {
             let kind = input::bouc_wen_only(a.params.model, "cor").map_err(py_error)?;
             let cases = per_list(py, &a, &lists, &sets, input::cases::<f64>)?;
-            compute_rows_progress(py, threads, &cases, progress, |c| float_row(kind, c, &opts))?
+            compute_rows_progress(py, threads, &cases, progress, |c| {
+                float_row(kind, c, &opts, a.derived)
+            })?
         }
     };
     let d = PyDict::new(py);
@@ -198,6 +202,21 @@ pub fn cor<'py>(
             "t_c",
             rows.iter().map(|r| r.t_c.unwrap_or(f64::NAN)).collect(),
         )?;
+    }
+    if a.derived {
+        // F_max, δ_max, ΔE (and in SI with --physical): NaN where not computed, with the reason
+        let cols = derived_columns(a.params.physical.is_some());
+        for (j, name) in cols.iter().enumerate() {
+            let v = rows.iter().map(|r| {
+                r.derived
+                    .as_ref()
+                    .and_then(|d| d.values()[j])
+                    .unwrap_or(f64::NAN)
+            });
+            put_f64(&d, name, v.collect())?;
+        }
+        let why = |r: &FloatRow| r.derived.as_ref().and_then(|d| d.reason.clone());
+        d.set_item("derived_reason", rows.iter().map(why).collect::<Vec<_>>())?;
     }
     let errors: Vec<Option<String>> = rows.into_iter().map(|r| r.error).collect();
     d.set_item("error", errors)?;

@@ -7,7 +7,7 @@ use super::cli::args::CorArgs;
 use super::cli::commands::rigorous_row;
 use super::cli::input;
 use super::cli::law_runs;
-use super::cli::output::RigorousRow;
+use super::cli::output::{RigorousRow, derived_columns};
 use super::cor::{cor_args, per_list, put_params};
 use super::run::{compute_rows_progress, py_error};
 use bwcl::engines::taylor::TaylorOptions;
@@ -54,7 +54,7 @@ pub fn cor_rigorous<'py>(
             input::law_cases::<Interval>(p, law)
         })?;
         let (rows, seconds, used) = compute_rows_progress(py, threads, &cases, progress, |c| {
-            law_runs::rigorous_row(law, c, &opts, a.engine.time_limit)
+            law_runs::rigorous_row(law, c, &opts, a.derived, a.engine.time_limit)
         })?;
         return rows_dict(py, &a, &opts, rows, seconds, used);
     }
@@ -73,6 +73,7 @@ pub fn cor_rigorous<'py>(
             &opts,
             pieces,
             a.sensitivities,
+            a.derived,
             &fallback,
             a.engine.time_limit,
         )
@@ -148,6 +149,19 @@ fn rows_dict<'py>(
             })
             .collect::<Vec<_>>(),
     )?;
+    if a.derived {
+        // F_max, δ_max, ΔE (and in SI with --physical): (n, 2) bounds, NaN where not
+        // computed, the decimals rounded outward, and the reason where not computed
+        let cols = derived_columns(a.params.physical.is_some());
+        let at =
+            |r: &RigorousRow, j: usize| r.derived.as_ref().and_then(|d| d.values()[j]).map(|p| p.0);
+        for (j, name) in cols.iter().enumerate() {
+            put_f64_2d(&d, name, flat(&|r| pair(at(r, j))), 2)?;
+            d.set_item(format!("{name}_text"), text(&|r| at(r, j)))?;
+        }
+        let why = |r: &RigorousRow| r.derived.as_ref().and_then(|d| d.reason.clone());
+        d.set_item("derived_reason", rows.iter().map(why).collect::<Vec<_>>())?;
+    }
     if a.sensitivities {
         // per case: (input, ∂T_s/∂u, ∂e/∂u, reason), the bounds rounded outward
         let sens = rows
