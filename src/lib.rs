@@ -18,9 +18,5 @@ pub mod identify;
 pub mod models;
 pub mod observables;
 
-// The Python bindings (feature "python"): they compile the CLI's sources, which name the
-// library `bwcl`.
-#[cfg(feature = "python")]
-extern crate self as bwcl;
-#[cfg(feature = "python")]
-mod python;
+// The Python bindings (src/python/) are the crate `bwcl-python` (bindings/Cargo.toml): they
+// link this library as built for the tests.

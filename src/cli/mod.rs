@@ -1,8 +1,8 @@
 //! The `bwcl` program: argument parsing, the subcommands, and the mapping of errors to one
 //! stderr line and an exit code (0 success, 1 not proved / integration failure, 2 bad input).
 
-// pub(crate): the Python bindings (src/python/, feature "python") compile this module into the
-// library and reuse its parsers, checks and rows
+// pub(crate): the Python bindings (src/python/, the crate bwcl-python) compile this module into
+// the extension and reuse its parsers, checks and rows
 pub(crate) mod args;
 pub(crate) mod band;
 pub(crate) mod classical;

@@ -1,5 +1,6 @@
-//! The Python extension module `bwcl._bwcl` (cargo feature `python`, built by maturin from
-//! `pyproject.toml`; the public API is the pure-Python package in `python/bwcl/`).
+//! The Python extension module `bwcl._bwcl`: the crate `bwcl-python` (bindings/Cargo.toml),
+//! built by maturin from `pyproject.toml`; the public API is the pure-Python package in
+//! `python/bwcl/`.
 //!
 //! Every call goes the CLI's way: the keyword arguments arrive as the CLI's own arguments
 //! (`--base=…`, `--v0=…`, `--rtol=…`), are parsed by its clap definitions and checked by its
