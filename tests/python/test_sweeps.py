@@ -154,9 +154,9 @@ def test_trajectories_and_loops_at_several_speeds():
 
 def test_progress_of_band_and_identify():
     seen = []
-    b = bwcl.band("shc", base=DSS, v0=(0.5, 1.0), thickness=1e-6,
+    b = bwcl.band("shc", base=DSS, v0=(0.5, 1.0), thickness=1e-5,
                   progress=lambda s, m: seen.append((s, m)))
-    # the share settled as the band goes (≈ 8 s), then the end
+    # the share settled as the band goes (≈ 4 s), then the end
     assert len(b) > 1 and seen[-1] == (1.0, "done") and len(seen) >= 3
     assert any("pieces" in m for _, m in seen[:-1]), seen
     assert all(0.0 <= s <= 1.0 for s, _ in seen)
@@ -166,7 +166,7 @@ def test_progress_of_band_and_identify():
 
     seen = []
     r = bwcl.identify("shc", DATA, error=0.02, base=DSS, bounds={"sigma_b": (0.001, 0.02)},
-                      resolution=16, progress=lambda s, m: seen.append((s, m)))
+                      resolution=8, progress=lambda s, m: seen.append((s, m)))
     assert seen[-1] == (1.0, "done") and len(r.status) > 1
     assert any("boxes done" in m for _, m in seen[:-1]), seen
     with pytest.raises(TypeError, match="progress"):
