@@ -310,6 +310,7 @@ fn adapt(
     let mut todo: Vec<(f64, f64)> = cut.windows(2).map(|w| (w[0], w[1])).collect();
     let mut done: Vec<Outcome> = Vec::new();
     let kept: Mutex<Vec<Outcome>> = Mutex::new(Vec::new());
+    let telling = Mutex::new(());
     let settled = |done: &[Outcome], kept: &Mutex<Vec<Outcome>>| {
         let kept = kept.lock().expect("no panic");
         let len: f64 = done.iter().chain(kept.iter()).map(|o| o.1 - o.0).sum();
@@ -345,6 +346,14 @@ fn adapt(
                         for q in parts {
                             let (l, h) = (q.v0_lo, q.v0_hi);
                             kept.lock().expect("no panic").push((l, h, Ok(q)));
+                        }
+                        // told as each piece settles, not only after the round: a round of a
+                        // long band runs for seconds
+                        // (one thread at a time, so that the shares told never go back)
+                        if let Some(Progress(f)) = &bo.progress {
+                            let _one = telling.lock().expect("no panic");
+                            let (share, pieces) = settled(&done, &kept);
+                            f(share, pieces);
                         }
                         (lo, hi, Ok(p), 0)
                     }
