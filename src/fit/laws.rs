@@ -45,6 +45,7 @@ use super::chi2::chi2_quantile;
 use super::data::CorData;
 use super::nelder_mead::FitStats;
 use super::weights::Weights;
+use crate::arith::float::golden::golden_min;
 use crate::engines::taylor::TaylorOptions;
 use crate::models::hunt_crossley::HuntCrossley;
 use crate::models::kelvin_voigt::KelvinVoigt;
@@ -330,7 +331,8 @@ pub fn fit_law(
             continue;
         }
         let (a, b) = (grid[i.saturating_sub(1)], grid[(i + 1).min(grid.len() - 1)]);
-        let (t, j, n) = golden(&j_of, a, b, (grid[i], js[i]));
+        let narrow = |a: f64, b: f64| (b - a).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
+        let (t, j, n) = golden_min(j_of, a, b, (grid[i], js[i]), narrow, 200);
         evaluations += n;
         found.push((t, j));
     }
@@ -420,40 +422,6 @@ pub fn fit_law(
         evaluations,
         elapsed: start.elapsed(),
     })
-}
-
-/// Golden-section search of f on [a, b] from a known point (x0, f0); returns (x, f(x),
-/// evaluations).
-fn golden(f: &(dyn Fn(f64) -> f64 + Sync), a: f64, b: f64, best: (f64, f64)) -> (f64, f64, usize) {
-    const R: f64 = 0.618_033_988_749_894_8;
-    let (mut a, mut b) = (a, b);
-    let mut c = b - R * (b - a);
-    let mut d = a + R * (b - a);
-    let (mut fc, mut fd) = (f(c), f(d));
-    let mut n = 2;
-    let mut best = best;
-    while (b - a).abs() > 1e-12 * a.abs().max(b.abs()).max(1e-300) && n < 200 {
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - R * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + R * (b - a);
-            fd = f(d);
-        }
-        n += 1;
-    }
-    for (x, fx) in [(c, fc), (d, fd)] {
-        if fx < best.1 {
-            best = (x, fx);
-        }
-    }
-    (best.0, best.1, n)
 }
 
 #[cfg(test)]

@@ -28,6 +28,7 @@
 
 use super::rigorous::Enclosure as Proved;
 use super::separation::{FloatOptions, ImpactError};
+use crate::arith::float::golden::golden_min;
 use crate::arith::jet::dual::Dual;
 use crate::arith::{Enclosure, Real, Scalar};
 use crate::engines::dop853::Dop853;
@@ -332,38 +333,6 @@ pub fn derived_rigorous<M: CollisionModel<Interval, N>, const N: usize>(
 /// Samples per step of the float search.
 const SAMPLES: usize = 4;
 
-/// The maximum of `g` on [a, b] near a sampled best `t` (g unimodal there): golden section on
-/// [max(a, t − h), min(b, t + h)], the ends included.
-fn golden(g: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut lo, mut hi) = (a, b);
-    let mut x1 = hi - r * (hi - lo);
-    let mut x2 = lo + r * (hi - lo);
-    let (mut g1, mut g2) = (g(x1), g(x2));
-    for _ in 0..80 {
-        if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1.0) {
-            break;
-        }
-        if g1 >= g2 {
-            hi = x2;
-            x2 = x1;
-            g2 = g1;
-            x1 = hi - r * (hi - lo);
-            g1 = g(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            g1 = g2;
-            x2 = lo + r * (hi - lo);
-            g2 = g(x2);
-        }
-    }
-    [(a, g(a)), (b, g(b)), (x1, g1), (x2, g2)].into_iter().fold(
-        (a, f64::NEG_INFINITY),
-        |best, c| if c.1 > best.1 { c } else { best },
-    )
-}
-
 /// F_max and δ_max on the f64 engine over [0, `ts`] (the T_s of [`super::impact`] with the same
 /// options), and ΔE from `e`.
 pub fn derived_float<M: CollisionModel<f64, N>, const N: usize>(
@@ -403,7 +372,14 @@ pub fn derived_float<M: CollisionModel<f64, N>, const N: usize>(
             // (a step whose best sample ties the best so far may hold the maximum between
             // its first samples: refined too)
             if gb >= best[k] - 1e-9 * (1.0 + best[k].abs()) {
-                let (_, v) = golden(g, (tb - h).max(t0), (tb + h).min(t1));
+                // the maximum of g (unimodal there) on the step's part around the best sample,
+                // its ends included: golden section on −g
+                let (lo, hi) = ((tb - h).max(t0), (tb + h).min(t1));
+                let (glo, ghi) = (g(lo), g(hi));
+                let ends = if glo >= ghi { (lo, -glo) } else { (hi, -ghi) };
+                let narrow = |a: f64, b: f64| b - a <= 4.0 * f64::EPSILON * b.abs().max(1.0);
+                let (_, v, _) = golden_min(|t| -g(t), lo, hi, ends, narrow, 82);
+                let v = -v;
                 best[k] = best[k].max(v).max(gb);
             }
         }

@@ -1,9 +1,11 @@
 //! `f64` as a [`Real`]: the coefficient field of the f64 DOP853 engine, rounded to nearest.
 //!
 //! - this file: `f64` as a [`Real`], its prepared exponents and its plain accumulator;
-//! - [`fastpow`]: x^q by tables per exponent (low latency).
+//! - [`fastpow`]: x^q by tables per exponent (low latency);
+//! - [`golden`]: golden-section search for a minimum.
 
 pub mod fastpow;
+pub mod golden;
 
 use crate::arith::real::{Dot, Exponent, Real};
 use fastpow::Power;
