@@ -230,7 +230,9 @@ fn the_json_runs_cover_the_range_as_written() {
 
 #[test]
 fn the_table_names_every_formula_and_its_proved_range() {
-    let out = stdout(&["laws", "--points", "20"]);
+    // a narrow range of targets: the pavings of the default range (12 s on 2 cores) are
+    // the_paving_proves_the_known_regimes'; here the table's shape
+    let out = stdout(&["laws", "--points", "20", "--e-star", "0.5..0.7"]);
     for f in DampingFormula::ALL {
         assert!(out.contains(f.source()), "{}", f.source());
     }

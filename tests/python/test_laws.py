@@ -20,8 +20,8 @@ def _cor(sigma):
 
 
 def test_laws_matches_the_program(cli):
-    r = bwcl.laws(["flores", "carvalho-martins"], ("0.3", "0.9"), points=7)
-    code, out, err = cli("laws", "--formulas", "flores,carvalho-martins", "--e-star", "0.3..0.9",
+    r = bwcl.laws(["flores", "carvalho-martins"], ("0.3", "0.5"), points=7)
+    code, out, err = cli("laws", "--formulas", "flores,carvalho-martins", "--e-star", "0.3..0.5",
                          "--points", "7", "--format", "json")
     assert code == 0, err
     d = json.loads(out)
@@ -38,7 +38,9 @@ def test_laws_matches_the_program(cli):
 
 
 def test_enclosures_hold_scipys_root():
-    r = bwcl.laws(["hunt-crossley", "lankarani-nikravesh", "gonthier", "hu-guo"], points=25)
+    # tol = 0.5: the pavings (what tol is for) settle at once; the points are the test
+    r = bwcl.laws(["hunt-crossley", "lankarani-nikravesh", "gonthier", "hu-guo"], points=25,
+                  tol=0.5)
     for f in r.formulas.values():
         for s_lo, s_hi, e_lo, e_hi in zip(f.sigma_lo, f.sigma_hi, f.e_lo, f.e_hi):
             sigma = 0.5 * (s_lo + s_hi)
