@@ -9,7 +9,7 @@ FLAGS=$(bash .ci/setup.sh)
 # setup fell back to building them from source
 if [ -z "$FLAGS" ]; then FEATURES=(--features system-gmp); else FEATURES=(); fi
 cargo build --release --quiet --no-default-features "${FEATURES[@]}" --bin bwcl
-BWCL=target/release/bwcl
+BWCL="${CARGO_TARGET_DIR:-target}/release/bwcl"
 V0="0.1,0.5,1,2,3,4,5"
 run() { # model name base
   echo "== $2: $1 --base $3"
