@@ -1,7 +1,7 @@
 //! The integration tests as one program (issue #34, the test command's time): each file of
 //! `tests/` is a module here, so the engines' generic code they instantiate is compiled and
-//! linked once, not once per file. `tests/cancel.rs` stays a program of its own: it sets the
-//! process-wide cancel flag, which would stop the other tests' runs.
+//! linked once, not once per file. `tests/cancel.rs` sets the process-wide cancel flag, which
+//! would stop the other tests' runs: its test runs itself in a child process.
 //!
 //! Run one file's tests by its module name: `cargo test --release --test suite cli::`.
 
@@ -13,6 +13,8 @@ mod common;
 #[path = "../proofs/sym.rs"]
 mod sym;
 
+#[path = "cancel.rs"]
+mod cancel;
 #[path = "classical.rs"]
 mod classical;
 #[path = "cli.rs"]

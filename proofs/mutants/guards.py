@@ -19,20 +19,16 @@ TESTS = ["--lib", "--test", "guards", "--test", "rigorous", "--test", "reference
 def commands(tests):
     """The `cargo test` argument lists that run `tests`, written as targets and filters
     (`--lib`, `--test FILE`, test-name filters). The files of tests/ are modules of one program,
-    tests/suite.rs (but cancel.rs): `--test FILE` runs `--test suite` with the filters given,
+    tests/suite.rs: `--test FILE` runs `--test suite` with the filters given,
     or with `FILE::` when none is. The library's unit tests run in a command of their own (a
     module filter would leave them out)."""
-    lib, files, cancel, filters = False, [], False, []
+    lib, files, filters = False, [], []
     it = iter(tests)
     for a in it:
         if a == "--lib":
             lib = True
         elif a == "--test":
-            f = next(it)
-            if f == "cancel":
-                cancel = True
-            else:
-                files.append(f)
+            files.append(next(it))
         elif a != "--":
             filters.append(a)
     out = []
@@ -40,8 +36,6 @@ def commands(tests):
         out.append(["--lib", "--", *filters])
     if files:
         out.append(["--test", "suite", "--", *(filters or [f + "::" for f in files])])
-    if cancel:
-        out.append(["--test", "cancel", "--", *filters])
     return out
 
 # (name, file, [(exact text, replacement)], what it removes[, the cargo test arguments that

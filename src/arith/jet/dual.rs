@@ -27,17 +27,24 @@ pub struct Dual<R, const M: usize> {
     pub d: [R; M],
 }
 
+/// [x, x, …, x] (one array constructor per number type and size, not one per call site: the
+/// duals are instantiated for every arithmetic and dimension, and their call sites multiply
+/// the code the compiler makes — issue #34, the test command's time).
+fn filled<R: Clone, const M: usize>(x: R) -> [R; M] {
+    std::array::from_fn(|_| x.clone())
+}
+
 impl<R: Real, const M: usize> Dual<R, M> {
     /// The i-th independent variable at value v.
     pub fn variable(v: R, i: usize) -> Self {
-        let mut d: [R; M] = std::array::from_fn(|_| R::zero());
+        let mut d: [R; M] = filled(R::zero());
         d[i] = R::one();
         Self { v, d }
     }
     pub fn constant(v: R) -> Self {
         Self {
             v,
-            d: std::array::from_fn(|_| R::zero()),
+            d: filled(R::zero()),
         }
     }
     /// Seeds a point as M independent variables.
@@ -57,50 +64,53 @@ impl<R: Real, const M: usize> Dual<R, M> {
         self
     }
     fn chain(&self, v: R, dv: R) -> Self {
-        Self {
-            v,
-            d: std::array::from_fn(|i| dv.clone() * self.d[i].clone()),
+        let mut d = self.d.clone();
+        for x in &mut d {
+            *x = dv.clone() * x.clone();
         }
+        Self { v, d }
     }
 }
 
 impl<R: Real, const M: usize> Add for Dual<R, M> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
-        Self {
-            v: self.v + o.v,
-            d: std::array::from_fn(|i| self.d[i].clone() + o.d[i].clone()),
+        let mut d = self.d;
+        for (x, y) in d.iter_mut().zip(o.d) {
+            *x = x.clone() + y;
         }
+        Self { v: self.v + o.v, d }
     }
 }
 impl<R: Real, const M: usize> Sub for Dual<R, M> {
     type Output = Self;
     fn sub(self, o: Self) -> Self {
-        Self {
-            v: self.v - o.v,
-            d: std::array::from_fn(|i| self.d[i].clone() - o.d[i].clone()),
+        let mut d = self.d;
+        for (x, y) in d.iter_mut().zip(o.d) {
+            *x = x.clone() - y;
         }
+        Self { v: self.v - o.v, d }
     }
 }
 impl<R: Real, const M: usize> Neg for Dual<R, M> {
     type Output = Self;
     fn neg(self) -> Self {
-        Self {
-            v: -self.v,
-            d: self.d.map(|x| -x),
+        let mut d = self.d;
+        for x in &mut d {
+            *x = -x.clone();
         }
+        Self { v: -self.v, d }
     }
 }
 #[allow(clippy::suspicious_arithmetic_impl)]
 impl<R: Real, const M: usize> Mul for Dual<R, M> {
     type Output = Self;
     fn mul(self, o: Self) -> Self {
-        Self {
-            d: std::array::from_fn(|i| {
-                self.d[i].clone() * o.v.clone() + self.v.clone() * o.d[i].clone()
-            }),
-            v: self.v * o.v,
+        let mut d = self.d;
+        for (x, y) in d.iter_mut().zip(o.d) {
+            *x = x.clone() * o.v.clone() + self.v.clone() * y;
         }
+        Self { d, v: self.v * o.v }
     }
 }
 #[allow(clippy::suspicious_arithmetic_impl)]
@@ -108,12 +118,11 @@ impl<R: Real, const M: usize> Div for Dual<R, M> {
     type Output = Self;
     fn div(self, o: Self) -> Self {
         let v = self.v.clone() / o.v.clone();
-        Self {
-            d: std::array::from_fn(|i| {
-                (self.d[i].clone() - v.clone() * o.d[i].clone()) / o.v.clone()
-            }),
-            v,
+        let mut d = self.d;
+        for (x, y) in d.iter_mut().zip(o.d) {
+            *x = (x.clone() - v.clone() * y) / o.v.clone();
         }
+        Self { d, v }
     }
 }
 
@@ -225,29 +234,41 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     fn unbounded() -> Self {
         Self {
             v: R::unbounded(),
-            d: std::array::from_fn(|_| R::unbounded()),
+            d: filled(R::unbounded()),
         }
     }
     #[inline]
     fn mul_int(&self, k: i64) -> Self {
+        let mut d = self.d.clone();
+        for x in &mut d {
+            *x = x.mul_int(k);
+        }
         Self {
             v: self.v.mul_int(k),
-            d: std::array::from_fn(|i| self.d[i].mul_int(k)),
+            d,
         }
     }
     #[inline]
     fn div_int(&self, k: i64) -> Self {
+        let mut d = self.d.clone();
+        for x in &mut d {
+            *x = x.div_int(k);
+        }
         Self {
             v: self.v.div_int(k),
-            d: std::array::from_fn(|i| self.d[i].div_int(k)),
+            d,
         }
     }
     #[inline]
     fn mul_constant(&self, c: &Self) -> Self {
         if c.d.iter().all(|x| x.lo() == 0.0 && x.hi() == 0.0) {
+            let mut d = self.d.clone();
+            for x in &mut d {
+                *x = x.mul_constant(&c.v);
+            }
             Self {
                 v: self.v.mul_constant(&c.v),
-                d: std::array::from_fn(|i| self.d[i].mul_constant(&c.v)),
+                d,
             }
         } else {
             self.clone() * c.clone()
@@ -272,7 +293,7 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     fn pow_ln(w: &Self, q: &Self, signed: bool) -> Self {
         Self {
             v: R::pow_ln(&w.v, &q.v, signed),
-            d: std::array::from_fn(|_| R::unbounded()),
+            d: filled(R::unbounded()),
         }
     }
     fn pow(&self, y: &Self) -> Self {

@@ -20,7 +20,13 @@ enum Key {
 impl<R: Real, const N: usize> Tape<R, N> {
     /// Records `f` (returning the field's N components followed by any extra outputs).
     pub fn record(f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>) -> Self {
-        Self::record_with(std::array::from_fn(|_| None), f)
+        Self::record_with(Self::no_params(), f)
+    }
+
+    /// No component is a parameter (out of [`Tape::record`], which is generic over the
+    /// recorded function).
+    fn no_params() -> [Option<R>; N] {
+        std::array::from_fn(|_| None)
     }
 
     /// [`Tape::record`] of a system whose components `i` with `params[i] = Some(range)` are
@@ -30,6 +36,14 @@ impl<R: Real, const N: usize> Tape<R, N> {
         params: [Option<R>; N],
         f: impl FnOnce(&[Rec<R>; N]) -> Vec<Rec<R>>,
     ) -> Self {
+        let (rec, vars) = Self::recorder(params);
+        let outs = f(&vars);
+        Self::from_recording(rec, vars, outs)
+    }
+
+    /// A fresh recorder and its N variables (out of [`Tape::record_with`], which is generic over
+    /// the recorded function: this is compiled once per arithmetic and dimension).
+    fn recorder(params: [Option<R>; N]) -> (Arc<Mutex<Recorder<R>>>, [Rec<R>; N]) {
         let rec = Arc::new(Mutex::new(Recorder {
             ops: Vec::new(),
             consts: Vec::new(),
@@ -37,7 +51,13 @@ impl<R: Real, const N: usize> Tape<R, N> {
         }));
         let mut params = params.into_iter();
         let vars: [Rec<R>; N] = std::array::from_fn(|i| Rec::var(&rec, i, params.next().flatten()));
-        let outs = f(&vars);
+        (rec, vars)
+    }
+
+    /// The tape from a recording: `vars` are the recorder's variables, `outs` the recorded
+    /// function's outputs (the rest of [`Tape::record_with`], compiled once per arithmetic and
+    /// dimension).
+    fn from_recording(rec: Arc<Mutex<Recorder<R>>>, vars: [Rec<R>; N], outs: Vec<Rec<R>>) -> Self {
         assert!(outs.len() >= N, "the first N outputs must be the field");
         let outputs: Vec<usize> = outs.iter().map(|o| o.node_on(&rec)).collect();
         for (i, v) in vars.iter().enumerate() {
