@@ -193,7 +193,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
 
 /// The rigorous rows of `cor`'s cases, in parallel, with a progress bar on a terminal (the
 /// budget `time_limit` shown): the rows and the time they took.
-pub(crate) fn prove_rows<C: Sync>(
+pub fn prove_rows<C: Sync>(
     cases: &[C],
     time_limit: Option<f64>,
     row: impl Fn(&C) -> RigorousRow + Sync + Send,
@@ -217,7 +217,7 @@ pub(crate) fn prove_rows<C: Sync>(
 }
 
 /// The six parameters of a set for the JSON output (also used by `fit`).
-pub(crate) fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
+pub fn params_f64(p: &NdParams<f64>) -> ParamsOut<f64> {
     ParamsOut {
         b: p.b,
         gamma: p.gamma,
@@ -240,12 +240,7 @@ fn params_interval(p: &NdParams<Interval>) -> ParamsOut<[f64; 2]> {
 }
 
 /// T_s and e of one case on the float engine (and with `derived`, F_max, δ_max, ΔE).
-pub(crate) fn float_row(
-    kind: ModelKind,
-    c: &Case<f64>,
-    opts: &FloatOptions,
-    derived: bool,
-) -> FloatRow {
+pub fn float_row(kind: ModelKind, c: &Case<f64>, opts: &FloatOptions, derived: bool) -> FloatRow {
     let mut out = None;
     let res = with_model!(kind, c.params.clone(), |m| impact(&m, opts).map(|r| {
         if derived {
@@ -267,7 +262,7 @@ pub(crate) fn float_row(
 }
 
 /// The derived outputs of a float run (T_s = `ts`, e = `e`), in SI too with `scales`.
-pub(crate) fn float_derived<M: CollisionModel<f64, N>, const N: usize>(
+pub fn float_derived<M: CollisionModel<f64, N>, const N: usize>(
     m: &M,
     opts: &FloatOptions,
     ts: Option<f64>,
@@ -284,7 +279,7 @@ pub(crate) fn float_derived<M: CollisionModel<f64, N>, const N: usize>(
 }
 
 /// The derived outputs of a proved run, enclosed on its flow, in SI too with `scales`.
-pub(crate) fn proved_derived<M: CollisionModel<Interval, N>, const N: usize>(
+pub fn proved_derived<M: CollisionModel<Interval, N>, const N: usize>(
     m: &M,
     enc: &Enclosure<N>,
     scales: Option<&Scales<Interval>>,
@@ -298,7 +293,7 @@ pub(crate) fn proved_derived<M: CollisionModel<Interval, N>, const N: usize>(
 }
 
 /// Why a proved row has no derived outputs: a range, the precision fallback, no separation.
-pub(crate) fn derived_missing(row: &mut RigorousRow, ranged: bool) {
+pub fn derived_missing(row: &mut RigorousRow, ranged: bool) {
     if row.derived.is_some() || !row.proved {
         return;
     }
@@ -313,7 +308,7 @@ pub(crate) fn derived_missing(row: &mut RigorousRow, ranged: bool) {
 
 /// A float row's result: T_s (in seconds too when the row has the time scale) and e, or why
 /// the integration failed.
-pub(crate) fn settle_float(
+pub fn settle_float(
     row: &mut FloatRow,
     res: Result<(Option<f64>, f64, bwcl::engines::dop853::Stats), bwcl::observables::ImpactError>,
 ) {
@@ -331,7 +326,7 @@ pub(crate) fn settle_float(
 }
 
 /// What a case without separation before the horizon proved.
-pub(crate) fn no_separation_text(horizon: f64) -> String {
+pub fn no_separation_text(horizon: f64) -> String {
     format!(
         "proved: no separation before the horizon T = {h} (T_s > {h}; e = 0 if it never separates, the paper's convention for T_s = +∞)",
         h = num(horizon)
@@ -341,7 +336,7 @@ pub(crate) fn no_separation_text(horizon: f64) -> String {
 /// Enclosures of T_s and e of one case on the rigorous engine (`time_limit`: the
 /// --time-limit given, named when the run stops at `opts.deadline`).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn rigorous_row(
+pub fn rigorous_row(
     kind: ModelKind,
     c: &Case<Interval>,
     opts: &TaylorOptions,
@@ -472,7 +467,7 @@ pub(crate) fn rigorous_row(
 /// A rigorous row's result: the enclosures of T_s (in seconds too, with the time scale `t_c`)
 /// and e; no separation before the horizon (proved: a result); or the reason it was not
 /// proved (`time_limit`: the --time-limit given, named when the run stopped at its deadline).
-pub(crate) fn settle_rigorous(
+pub fn settle_rigorous(
     row: &mut RigorousRow,
     res: Result<(Interval, Interval), RigorError>,
     t_c: Option<Interval>,
@@ -499,7 +494,7 @@ pub(crate) fn settle_rigorous(
 
 /// Which CSV `curve` writes.
 #[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Curve {
+pub enum Curve {
     /// t, the states, x, v, F.
     Trajectory,
     /// x, F (or x_mm, F_N).
@@ -508,7 +503,7 @@ pub(crate) enum Curve {
 
 /// A CSV: the header and the rows, already formatted, and a note for stderr (written after
 /// the CSV).
-pub(crate) type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
+pub type Csv = (Vec<String>, Vec<Vec<String>>, Option<String>);
 
 fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
     input::out_path(a.out.as_deref())?;
@@ -557,7 +552,7 @@ fn curve(a: &TrajectoryArgs, what: Curve) -> Result<i32, CliError> {
 }
 
 /// --physical-units needs the scales of --physical.
-pub(crate) fn check_units(a: &TrajectoryArgs) -> Result<(), CliError> {
+pub fn check_units(a: &TrajectoryArgs) -> Result<(), CliError> {
     if a.physical_units && a.params.physical.is_none() {
         return Err(CliError::Input(
             "--physical-units needs --physical (the scales come from the physical parameters)"
@@ -568,7 +563,7 @@ pub(crate) fn check_units(a: &TrajectoryArgs) -> Result<(), CliError> {
 }
 
 /// Samples on the float engine's dense output.
-pub(crate) fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
+pub fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
     model: &M,
     opts: &FloatOptions,
     t_end: Option<f64>,
@@ -628,7 +623,7 @@ pub(crate) fn float_curve<M: CollisionModel<f64, N>, const N: usize>(
 }
 
 /// Samples of the proved flow: the enclosure of every column at each grid time.
-pub(crate) fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
+pub fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
     t_end: Option<f64>,

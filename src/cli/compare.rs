@@ -36,7 +36,7 @@ fn is_name(law: Law, n: &str) -> bool {
 /// The bounds of `--bounds name=lo..hi` for the law (its defaults without the option), as the
 /// doubles just outside the decimals written, clipped at the admissible floor when the decimal
 /// is on it.
-pub(crate) fn law_bounds(law: Law, text: Option<&str>) -> Result<(f64, f64), CliError> {
+pub fn law_bounds(law: Law, text: Option<&str>) -> Result<(f64, f64), CliError> {
     let bad = |m: String| CliError::Input(format!("--bounds: {m}"));
     let Some(t) = text else {
         return Ok(law.default_bounds());
@@ -277,7 +277,7 @@ pub fn fit(a: &FitArgs, law: Law) -> Result<i32, CliError> {
 
 /// `identify --model <law>`: the paving of the law's parameter (no --fix, --base; --free must
 /// name the parameter).
-pub(crate) fn identify(a: &IdentifyArgs, law: Law, bar: bool) -> Result<Done, CliError> {
+pub fn identify(a: &IdentifyArgs, law: Law, bar: bool) -> Result<Done, CliError> {
     for (given, opt) in [
         (a.fix.is_some(), "--fix"),
         (a.base.is_some(), "--base"),
@@ -364,7 +364,7 @@ pub(crate) fn identify(a: &IdentifyArgs, law: Law, bar: bool) -> Result<Done, Cl
 pub const LAW_RESOLUTION: f64 = (1u64 << 20) as f64;
 
 /// The certificate of an empty F in words: which row refutes which range of θ.
-pub(crate) fn certificate(law: Law, refuted: &[Refutation], data: &CorData) -> Vec<String> {
+pub fn certificate(law: Law, refuted: &[Refutation], data: &CorData) -> Vec<String> {
     refuted
         .iter()
         .map(|r| {
@@ -519,7 +519,7 @@ pub fn compare(a: &CompareArgs) -> Result<i32, CliError> {
 
 /// The comparison's output (table or JSON) and the number of models that could not be
 /// fitted; a progress bar on a terminal when `bar` is set.
-pub(crate) fn report(a: &CompareArgs, bar: bool) -> Result<(Vec<u8>, usize), CliError> {
+pub fn report(a: &CompareArgs, bar: bool) -> Result<(Vec<u8>, usize), CliError> {
     let data = read_data(&a.data)?;
     if let Some(e) = a.error
         && !(e.is_finite() && e > 0.0)

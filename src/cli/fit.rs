@@ -61,7 +61,7 @@ struct MinimumOut {
 }
 
 #[derive(Serialize)]
-pub(crate) struct FitOut {
+pub struct FitOut {
     model: &'static str,
     /// The best base set, named B, Gamma, kappa, sigma (σ_b), n, p.
     #[serde(rename = "P_star")]
@@ -121,16 +121,16 @@ struct CostOut {
 }
 
 /// The set as the --base argument.
-pub(crate) fn base_text(p: &NdParams<f64>) -> String {
+pub fn base_text(p: &NdParams<f64>) -> String {
     p.as_array().map(num).join(",")
 }
 
-pub(crate) fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
+pub fn read_data(path: &std::path::Path) -> Result<CorData, CliError> {
     CorData::read(path).map_err(|e| CliError::Input(format!("--data {e}")))
 }
 
 /// The Bouc–Wen model of `--model` (a classical law refused where only they apply).
-pub(crate) fn bouc_wen(m: super::args::FamilyArg) -> Result<ModelKind, CliError> {
+pub fn bouc_wen(m: super::args::FamilyArg) -> Result<ModelKind, CliError> {
     m.kind().ok_or_else(|| {
         CliError::Input(format!(
             "--model {}: a classical law is fitted by `bwcl fit --model {0}` or `bwcl compare` \
@@ -142,7 +142,7 @@ pub(crate) fn bouc_wen(m: super::args::FamilyArg) -> Result<ModelKind, CliError>
 
 /// The settings of `fit` from its arguments: --init parsed and checked against --starts and
 /// --p1 (the data are read separately).
-pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
+pub fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
     let kind = bouc_wen(a.model)?;
     let mut initial = Vec::new();
     if let Some(text) = &a.init {
@@ -198,7 +198,7 @@ pub(crate) fn fit_options(a: &FitArgs) -> Result<FitOptions, CliError> {
 
 /// A fit needs at least as many data rows as free parameters: fewer leave P* undetermined
 /// (a family of exact fits), refused as bad input.
-pub(crate) fn check_determined(
+pub fn check_determined(
     kind: ModelKind,
     opts: &FitOptions,
     data: &CorData,
@@ -220,7 +220,7 @@ pub(crate) fn check_determined(
 }
 
 /// The space of --fix and --bounds (`None` without either).
-pub(crate) fn search_space(kind: ModelKind, a: &SearchArgs) -> Result<Option<Space>, CliError> {
+pub fn search_space(kind: ModelKind, a: &SearchArgs) -> Result<Option<Space>, CliError> {
     if a.fix.is_none() && a.bounds.is_none() {
         return Ok(None);
     }
@@ -244,7 +244,7 @@ pub(crate) fn search_space(kind: ModelKind, a: &SearchArgs) -> Result<Option<Spa
 }
 
 /// The residuals' errors of --error, --tc-error, --no-tc and the data's columns.
-pub(crate) fn search_weights(data: &CorData, a: &SearchArgs) -> Result<Weights, CliError> {
+pub fn search_weights(data: &CorData, a: &SearchArgs) -> Result<Weights, CliError> {
     Weights::new(data, a.error, a.tc_error, !a.no_tc).map_err(CliError::Input)
 }
 
@@ -264,7 +264,7 @@ fn minimum_out(m: &Minimum, unc: Option<Uncertainty>) -> MinimumOut {
 }
 
 /// The uncertainty at a point of a fit (see `bwcl::fit::uncertainty`).
-pub(crate) fn fit_uncertainty(
+pub fn fit_uncertainty(
     res: &FitResult,
     base: &NdParams<f64>,
     data: &CorData,
@@ -288,7 +288,7 @@ pub(crate) fn fit_uncertainty(
 }
 
 /// The uncertainty as aligned text.
-pub(crate) fn uncertainty_table(u: &Uncertainty) -> String {
+pub fn uncertainty_table(u: &Uncertainty) -> String {
     let mut s = String::from("\nuncertainty at the best fit");
     s.push_str(&format!(
         " (s² = {}; Jacobian: {}):\n",
@@ -352,7 +352,7 @@ pub(crate) fn uncertainty_table(u: &Uncertainty) -> String {
 /// Most DOP853 steps of one CoR inside `fit`: a well-posed case takes a few hundred to a few
 /// thousand; a stiff trial set (B or σ_b in the millions) is then counted as a failure
 /// (residual 1) instead of taking 10⁶ steps, which bounds the time of a fit.
-pub(crate) const FIT_MAX_STEPS: usize = 50_000;
+pub const FIT_MAX_STEPS: usize = 50_000;
 
 fn curve_points(c: &FitCurve) -> Vec<CurvePoint> {
     c.v0.iter()
@@ -374,7 +374,7 @@ fn errors_text(c: &FitCurve) -> Vec<String> {
 }
 
 /// Aligned columns with a header.
-pub(crate) fn table(head: &[&str], rows: &[Vec<String>]) -> String {
+pub fn table(head: &[&str], rows: &[Vec<String>]) -> String {
     let len = |s: &str| s.chars().count();
     let mut w: Vec<usize> = head.iter().map(|h| len(h)).collect();
     for r in rows {
@@ -418,7 +418,7 @@ fn curve_table(c: &FitCurve) -> String {
 }
 
 /// A progress bar on stderr, hidden when stderr is not a terminal.
-pub(crate) fn progress_bar(len: u64) -> ProgressBar {
+pub fn progress_bar(len: u64) -> ProgressBar {
     if !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
@@ -578,7 +578,7 @@ pub fn fit(a: &FitArgs) -> Result<i32, CliError> {
 
 /// The JSON report of `fit`: with the uncertainty at the best point given, the uncertainty at
 /// every other minimum too (by central differences: see `bwcl::fit::uncertainty`).
-pub(crate) fn fit_out(
+pub fn fit_out(
     a: &FitArgs,
     res: &FitResult,
     data: &CorData,

@@ -139,7 +139,7 @@ fn verdict(p: &Paving, d: &Done) -> String {
 }
 
 /// A paving done, with what its reports need.
-pub(crate) struct Done {
+pub struct Done {
     /// The model's name.
     pub model: &'static str,
     pub rows: usize,
@@ -158,7 +158,7 @@ pub(crate) struct Done {
 /// Reads the data, builds the problem and paves the box (a progress bar on a terminal when
 /// `bar` is set; `watch` told the share of the box decided and a message, for a Bouc–Wen
 /// model).
-pub(crate) fn compute(
+pub fn compute(
     a: &IdentifyArgs,
     bar: bool,
     watch: Option<&(dyn Fn(f64, String) + Sync)>,
@@ -215,7 +215,7 @@ pub(crate) fn compute(
 }
 
 /// The JSON report of a paving (the shape).
-pub(crate) fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
+pub fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
     let (paving, free, start) = (&d.paving, &d.free, &d.start);
     let [nf, ni, nu] = paving.counts();
     let [sf, si, su] = paving.shares(start);
@@ -383,7 +383,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
 }
 
 /// The effective `--resolution` (its default depends on the model).
-pub(crate) fn resolution(a: &IdentifyArgs) -> u64 {
+pub fn resolution(a: &IdentifyArgs) -> u64 {
     a.resolution.unwrap_or(if a.model.law().is_some() {
         super::compare::LAW_RESOLUTION as u64
     } else {

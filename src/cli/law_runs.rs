@@ -15,27 +15,28 @@ use super::commands::{
 use super::input::{self, LawCase};
 use super::output::{FloatRow, RigorousRow, RowParams, bounds};
 use bwcl::engines::taylor::TaylorOptions;
-use bwcl::models::classical::{Law, LawModel, LawParams};
+use bwcl::models::classical::{Law, LawParams};
 use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::trajectory::Units;
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
 use rayon::prelude::*;
 
-/// Runs `$body` with `$m` bound to the collision model inside a [`LawModel`] (each law its own
-/// monomorphization).
+/// Runs `$body` with `$m` bound to the collision model inside a [`LawModel`](bwcl::models::classical::LawModel) (each law its own
+/// monomorphization). Exported for the Python bindings' trajectory, which dispatches with it
+/// too.
+#[macro_export]
+#[doc(hidden)]
 macro_rules! with_law {
     ($model:expr, |$m:ident| $body:expr) => {
         match $model {
-            LawModel::Force($m) => $body,
-            LawModel::KelvinVoigt($m) => $body,
-            LawModel::LinearMaxwell($m) => $body,
+            $crate::models::classical::LawModel::Force($m) => $body,
+            $crate::models::classical::LawModel::KelvinVoigt($m) => $body,
+            $crate::models::classical::LawModel::LinearMaxwell($m) => $body,
         }
     };
 }
-// (the Python bindings' trajectory dispatches with it too)
-#[allow(unused_imports)]
-pub(crate) use with_law;
+pub use crate::with_law;
 
 /// The options of `cor` a classical law does not take, refused naming the option.
 pub fn check_cor_options(a: &CorArgs) -> Result<(), CliError> {

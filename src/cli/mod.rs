@@ -1,22 +1,22 @@
 //! The `bwcl` program: argument parsing, the subcommands, and the mapping of errors to one
 //! stderr line and an exit code (0 success, 1 not proved / integration failure, 2 bad input).
 
-// pub(crate): the Python bindings (src/python/, the crate bwcl-python) compile this module into
-// the extension and reuse its parsers, checks and rows
-pub(crate) mod args;
-pub(crate) mod band;
-pub(crate) mod classical;
-pub(crate) mod commands;
-pub(crate) mod compare;
-pub(crate) mod fit;
-pub(crate) mod identify;
-pub(crate) mod input;
-pub(crate) mod law_runs;
-pub(crate) mod laws;
-pub(crate) mod output;
-pub(crate) mod precise;
-pub(crate) mod profile;
-pub(crate) mod progress;
+// pub: the Python bindings (src/python/, the crate bwcl-python) reuse its parsers, checks and
+// rows
+pub mod args;
+pub mod band;
+pub mod classical;
+pub mod commands;
+pub mod compare;
+pub mod fit;
+pub mod identify;
+pub mod input;
+pub mod law_runs;
+pub mod laws;
+pub mod output;
+pub mod precise;
+pub mod profile;
+pub mod progress;
 
 use bwcl::fit::data::echo;
 use clap::Parser;
@@ -74,7 +74,7 @@ fn report(message: &str) {
 }
 
 /// A message as the one line [`report`] prints after "bwcl: error: ".
-pub(crate) fn error_line(message: &str) -> String {
+pub fn error_line(message: &str) -> String {
     // a message is one line by construction, its user values escaped; fold any stray
     // whitespace and escape any stray control character to keep it so
     let line: Vec<&str> = message.split_whitespace().collect();
@@ -124,7 +124,7 @@ fn clap_error(e: clap::Error) -> i32 {
 }
 
 /// A usage error of clap (an unknown option, a value out of its range) as the CLI reports it.
-pub(crate) fn usage_message(e: &clap::Error) -> String {
+pub fn usage_message(e: &clap::Error) -> String {
     one_line(&escape_values(e))
 }
 

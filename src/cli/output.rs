@@ -699,7 +699,7 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
 }
 
 /// Pretty JSON with a final newline.
-pub(crate) fn json<T: Serialize + ?Sized>(rows: &T) -> Result<Vec<u8>, CliError> {
+pub fn json<T: Serialize + ?Sized>(rows: &T) -> Result<Vec<u8>, CliError> {
     let mut v = serde_json::to_vec_pretty(rows)
         .map_err(|e| CliError::Failed(format!("writing JSON: {e}")))?;
     v.push(b'\n');
@@ -725,7 +725,7 @@ where
 
 /// Aligned columns with a header. A row shorter than the header ends with a message cell that
 /// spans the remaining columns (it does not widen them).
-pub(crate) fn table(head: &[&str], rows: &[Vec<String>]) -> String {
+pub fn table(head: &[&str], rows: &[Vec<String>]) -> String {
     let len = |s: &str| s.chars().count();
     let mut w: Vec<usize> = head.iter().map(|h| len(h)).collect();
     for r in rows {

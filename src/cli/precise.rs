@@ -32,9 +32,7 @@ fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
 
 /// [`cases`] of cases already parsed (the Python bindings parse their speeds in batches): (v0
 /// as written, or "-" for --nd; the parameters as written).
-pub(crate) fn texts(
-    checked: Vec<input::Case<Interval>>,
-) -> Result<Vec<(String, ParamText)>, CliError> {
+pub fn texts(checked: Vec<input::Case<Interval>>) -> Result<Vec<(String, ParamText)>, CliError> {
     if checked
         .iter()
         .any(|c| c.inputs.values().iter().any(sets::is_range))

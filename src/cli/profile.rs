@@ -19,7 +19,7 @@ use serde::Serialize;
 use std::sync::Arc;
 
 #[derive(Serialize)]
-pub(crate) struct ProfileOut {
+pub struct ProfileOut {
     model: &'static str,
     /// The best fit the profiles start from.
     #[serde(rename = "P_star")]
@@ -243,11 +243,7 @@ pub fn svg(profiles: &[Profile], threshold: f64) -> String {
 }
 
 /// Fits, then profiles (the work of `profile`), advancing `bar` per grid point.
-pub(crate) fn compute(
-    a: &ProfileArgs,
-    data: &CorData,
-    bar: &ProgressBar,
-) -> Result<ProfileOut, CliError> {
+pub fn compute(a: &ProfileArgs, data: &CorData, bar: &ProgressBar) -> Result<ProfileOut, CliError> {
     let kind = ModelKind::from(a.model);
     let data = data.clone();
     let space = search_space(kind, &a.search)?;

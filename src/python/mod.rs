@@ -19,11 +19,8 @@
 //! - [`classical`]: T_s and e of the classical collision laws;
 //! - [`run`]: argument parsing, errors, the thread pool and the GIL.
 
-// The CLI's sources, compiled into the library for the bindings (the program's entry point
-// and writers stay unused here).
-#[allow(dead_code)]
-#[path = "../cli/mod.rs"]
-mod cli;
+// The CLI's parsers, checks and rows, as the library compiled them for the program.
+use bwcl::cli;
 
 mod arrays;
 mod band;

@@ -9,7 +9,7 @@ use super::cli::input;
 use super::cli::law_runs::with_law;
 use super::run::{compute, parse, py_error};
 use bwcl::engines::taylor::TaylorOptions;
-use bwcl::models::classical::{Law, LawModel};
+use bwcl::models::classical::Law;
 use bwcl::models::hunt_crossley::HuntCrossley;
 use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::models::scaling::Scales;
