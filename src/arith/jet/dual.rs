@@ -34,6 +34,22 @@ fn filled<R: Clone, const M: usize>(x: R) -> [R; M] {
     std::array::from_fn(|_| x.clone())
 }
 
+/// The parts d with f applied to each, in place (for the same reason as [`filled`]).
+fn map_parts<R, const M: usize>(mut d: [R; M], f: impl Fn(&R) -> R) -> [R; M] {
+    for x in &mut d {
+        *x = f(x);
+    }
+    d
+}
+
+/// The parts d and e combined by f, in d's place.
+fn zip_parts<R, const M: usize>(mut d: [R; M], e: [R; M], f: impl Fn(&R, R) -> R) -> [R; M] {
+    for (x, y) in d.iter_mut().zip(e) {
+        *x = f(x, y);
+    }
+    d
+}
+
 impl<R: Real, const M: usize> Dual<R, M> {
     /// The i-th independent variable at value v.
     pub fn variable(v: R, i: usize) -> Self {
@@ -64,10 +80,7 @@ impl<R: Real, const M: usize> Dual<R, M> {
         self
     }
     fn chain(&self, v: R, dv: R) -> Self {
-        let mut d = self.d.clone();
-        for x in &mut d {
-            *x = dv.clone() * x.clone();
-        }
+        let d = map_parts(self.d.clone(), |x| dv.clone() * x.clone());
         Self { v, d }
     }
 }
@@ -75,30 +88,21 @@ impl<R: Real, const M: usize> Dual<R, M> {
 impl<R: Real, const M: usize> Add for Dual<R, M> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
-        let mut d = self.d;
-        for (x, y) in d.iter_mut().zip(o.d) {
-            *x = x.clone() + y;
-        }
+        let d = zip_parts(self.d, o.d, |x, y| x.clone() + y);
         Self { v: self.v + o.v, d }
     }
 }
 impl<R: Real, const M: usize> Sub for Dual<R, M> {
     type Output = Self;
     fn sub(self, o: Self) -> Self {
-        let mut d = self.d;
-        for (x, y) in d.iter_mut().zip(o.d) {
-            *x = x.clone() - y;
-        }
+        let d = zip_parts(self.d, o.d, |x, y| x.clone() - y);
         Self { v: self.v - o.v, d }
     }
 }
 impl<R: Real, const M: usize> Neg for Dual<R, M> {
     type Output = Self;
     fn neg(self) -> Self {
-        let mut d = self.d;
-        for x in &mut d {
-            *x = -x.clone();
-        }
+        let d = map_parts(self.d, |x| -x.clone());
         Self { v: -self.v, d }
     }
 }
@@ -106,10 +110,9 @@ impl<R: Real, const M: usize> Neg for Dual<R, M> {
 impl<R: Real, const M: usize> Mul for Dual<R, M> {
     type Output = Self;
     fn mul(self, o: Self) -> Self {
-        let mut d = self.d;
-        for (x, y) in d.iter_mut().zip(o.d) {
-            *x = x.clone() * o.v.clone() + self.v.clone() * y;
-        }
+        let d = zip_parts(self.d, o.d, |x, y| {
+            x.clone() * o.v.clone() + self.v.clone() * y
+        });
         Self { d, v: self.v * o.v }
     }
 }
@@ -118,10 +121,9 @@ impl<R: Real, const M: usize> Div for Dual<R, M> {
     type Output = Self;
     fn div(self, o: Self) -> Self {
         let v = self.v.clone() / o.v.clone();
-        let mut d = self.d;
-        for (x, y) in d.iter_mut().zip(o.d) {
-            *x = (x.clone() - v.clone() * y) / o.v.clone();
-        }
+        let d = zip_parts(self.d, o.d, |x, y| {
+            (x.clone() - v.clone() * y) / o.v.clone()
+        });
         Self { d, v }
     }
 }
@@ -239,36 +241,24 @@ impl<R: Real, const M: usize> Real for Dual<R, M> {
     }
     #[inline]
     fn mul_int(&self, k: i64) -> Self {
-        let mut d = self.d.clone();
-        for x in &mut d {
-            *x = x.mul_int(k);
-        }
         Self {
             v: self.v.mul_int(k),
-            d,
+            d: map_parts(self.d.clone(), |x| x.mul_int(k)),
         }
     }
     #[inline]
     fn div_int(&self, k: i64) -> Self {
-        let mut d = self.d.clone();
-        for x in &mut d {
-            *x = x.div_int(k);
-        }
         Self {
             v: self.v.div_int(k),
-            d,
+            d: map_parts(self.d.clone(), |x| x.div_int(k)),
         }
     }
     #[inline]
     fn mul_constant(&self, c: &Self) -> Self {
         if c.d.iter().all(|x| x.lo() == 0.0 && x.hi() == 0.0) {
-            let mut d = self.d.clone();
-            for x in &mut d {
-                *x = x.mul_constant(&c.v);
-            }
             Self {
                 v: self.v.mul_constant(&c.v),
-                d,
+                d: map_parts(self.d.clone(), |x| x.mul_constant(&c.v)),
             }
         } else {
             self.clone() * c.clone()
