@@ -9,7 +9,7 @@ use bwcl::models::{ModelKind, NdParams};
 use bwcl::observables::band::{
     BandOptions, prove_band, prove_decreasing, prove_piece, sub_centres,
 };
-use bwcl::observables::sets::{Inputs, prove_over_set};
+use bwcl::observables::sets::{Inputs, hull_over_set, prove_at_point, prove_over_set};
 use inari::Interval;
 
 use crate::common;
@@ -497,4 +497,113 @@ fn a_range_one_run_cannot_prove_is_split_until_proved_and_tight() {
     let se = spread(pts.iter().map(|p| p.1));
     assert!(r.e.wid() <= 1.2 * se, "e {:e} vs spread {se:e}", r.e.wid());
     assert!(r.e_ratio() <= 1.2, "{}", r.summary());
+}
+
+/// The hulls over a set with no derivative (`hull_over_set`, what identification closes or
+/// refutes a row with where its slopes fail), at each dimension it picks (SHC with 1–2 ranges at
+/// D = 5, 3–4 at D = 7; Maxwell at D = 9):
+/// - in the Hunt–Crossley limit (e depends on σ = σ_b·v0 alone, decreasing) they contain the
+///   closed form's range [e_HC(σ₂), e_HC(σ₁)], 400-bit brackets compared as exact rationals,
+///   with κ and n ranged beside σ_b (they do not enter e there);
+/// - on the DSS sets they contain the point engine's enclosures at the box's corners and
+///   centre, and (negative control) not the one at a point outside the box.
+#[test]
+fn hulls_over_sets_contain_the_closed_form_and_their_points() {
+    use rug::Rational;
+    let rat = |x: f64| Rational::from_f64(x).unwrap();
+    let opts = TaylorOptions::default();
+    let v0 = iv(2.0, 2.0);
+    for (k, extra) in [(1, ""), (2, "kappa"), (3, "kappa,n")] {
+        let mut p = NdParams::parse(ModelKind::Shc, "1e-300,0,0.5,0.25,1.5,1.5").unwrap();
+        p.sigma = iv(0.25, 0.2505);
+        if extra.contains("kappa") {
+            p.kappa = iv(0.4, 0.6);
+        }
+        if extra.contains(",n") {
+            p.n = iv(1.4, 1.6);
+        }
+        let inputs = Inputs::Base { base: p, v0 };
+        let (_, e) = hull_over_set(ModelKind::Shc, &inputs, &opts)
+            .unwrap_or_else(|err| panic!("{k} ranges: {err}"));
+        let (lo2, _) = common::hunt_crossley_bracket(&(rat(0.2505) * rat(2.0)));
+        let (_, hi1) = common::hunt_crossley_bracket(&(rat(0.25) * rat(2.0)));
+        assert!(
+            rat(e.inf()) <= lo2 && rat(e.sup()) >= hi1,
+            "{k} ranges: e {e:?} misses [{}, {}]",
+            lo2.to_f64(),
+            hi1.to_f64()
+        );
+    }
+    let boxes = [
+        (
+            ModelKind::Shc,
+            DSS_SHC,
+            [(2, 0.62, 0.625), (3, 0.007, 0.0072)],
+            2.4,
+        ),
+        (
+            ModelKind::Shc,
+            DSS_SHC,
+            [(2, 0.62, 0.621), (4, 1.3, 1.301)],
+            4.2,
+        ),
+        (
+            ModelKind::Maxwell,
+            DSA_MX,
+            [(2, 0.11, 0.115), (3, 0.0078, 0.0079)],
+            1.0,
+        ),
+    ];
+    for (kind, text, ranges, v) in boxes {
+        let at = |point: &[f64]| {
+            let mut p = NdParams::parse(kind, text).unwrap();
+            for (&(j, _, _), &x) in ranges.iter().zip(point) {
+                let x = iv(x, x);
+                match j {
+                    2 => p.kappa = x,
+                    3 => p.sigma = x,
+                    _ => p.n = x,
+                }
+            }
+            Inputs::Base {
+                base: p,
+                v0: iv(v, v),
+            }
+        };
+        let mut set = NdParams::parse(kind, text).unwrap();
+        for &(j, lo, hi) in &ranges {
+            match j {
+                2 => set.kappa = iv(lo, hi),
+                3 => set.sigma = iv(lo, hi),
+                _ => set.n = iv(lo, hi),
+            }
+        }
+        let inputs = Inputs::Base {
+            base: set,
+            v0: iv(v, v),
+        };
+        let (ts, e) = hull_over_set(kind, &inputs, &opts)
+            .unwrap_or_else(|err| panic!("{text} at {v}: {err}"));
+        let (a, b) = (ranges[0], ranges[1]);
+        let points = [
+            [a.1, b.1],
+            [a.1, b.2],
+            [a.2, b.1],
+            [a.2, b.2],
+            [(a.1 + a.2) / 2.0, (b.1 + b.2) / 2.0],
+        ];
+        for pt in points {
+            let (pts, pe) = prove_at_point(kind, &at(&pt), &opts).unwrap();
+            assert!(
+                pts.subset(ts) && pe.subset(e),
+                "{text} at {v}, {pt:?}: T_s {pts:?} e {pe:?} outside the hulls {ts:?} {e:?}"
+            );
+        }
+        // negative control: a point off the box (κ 0.05 lower) is not inside the hull of e
+        let (_, off) = prove_at_point(kind, &at(&[a.1 - 0.05, b.1]), &opts).unwrap();
+        assert!(
+            !off.subset(e),
+            "{text} at {v}: the hull {e:?} is too wide to tell {off:?}"
+        );
+    }
 }

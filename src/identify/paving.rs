@@ -7,22 +7,28 @@
 //! 1. 𝓟 contracts it: Γ_b ∈ [−sup B_b, sup B_b], B_b ≥ min |Γ_b|; the cut slabs hold no point
 //!    of 𝓟 (they are reported infeasible: F ⊂ 𝓟 by definition). A box that still crosses
 //!    |Γ_b| = B_b cannot be given to the engines: it is split (undecided at the resolution).
-//! 2. For every open row, its observables are enclosed over U by the mean-value form about
-//!    U's centre ([`super::form`]): proved outside the outer target → U is infeasible; inside
-//!    the inner target → the constraint holds on all of U and the row is dropped for U's
-//!    sub-boxes; else the form contracts U. Contraction repeats (at a new centre) while it
-//!    removes at least a fifth of some side.
+//! 2. For every open row, its observables are enclosed over U — by their hulls over U where the
+//!    row has no slopes (one run with the parameters as components,
+//!    [`crate::observables::sets::hull_over_set`]), then by the mean-value form about U's
+//!    centre ([`super::form`]) where it has or gets them: proved outside the outer target → U
+//!    is infeasible; inside the inner target → the constraint holds on all of U and the row is
+//!    dropped for U's sub-boxes; else the form contracts U. Contraction repeats (at a new
+//!    centre) while it removes at least a fifth of some side.
 //! 3. No open row left: U is feasible. Else U is bisected along its side that is widest
 //!    relative to the starting box, until the sides reach the resolution (then undecided).
 //!
 //! Before step 2 the f64 engine guesses each open row's outcome on U ([`super::guide`]), and
 //! only what the guess says can succeed is tried: the surest violated row that can be tried
 //! alone (one with slopes first, then the slowest impact: the variational runs reach wider
-//! boxes at low speeds), every row when each is guessed inside, else nothing (U is bisected at
-//! once). A row is tried on a box no wider than the widest on which its slopes were proved, or
-//! narrower than the narrowest on which they failed. Guesses only choose the work: each verdict
-//! is still the interval engines'. Measured on the 2-D floor of issue #31 (σ_b × κ, 1/128):
-//! 85 % of the box undecided after 300 s before, 6.3 % (complete) in 293 s after.
+//! boxes at low speeds), else — no row guessed violated — every row guessed inside (closed on
+//! U, its sub-boxes do not run it again), else nothing (U is bisected at once). A row's slopes
+//! (its hulls) are tried on a box no wider than the widest on which they were proved, or
+//! narrower than the narrowest on which they failed; hulls that decided nothing are tried again
+//! on boxes half as large. Guesses only choose the work: each verdict is still the interval
+//! engines'. Measured on the 2-D floor of issue #31 (σ_b × κ, 1/128, 2 cores): with the
+//! slopes alone 6.3 % undecided (complete) in 293 s, no box proved feasible (the slopes of the
+//! rows at v0 ≥ 4 wrap even at the resolution); with the hulls first 1.46 % undecided and
+//! 1.73 % feasible (complete) in 50–57 s.
 //!
 //! Work order: half of the boxes by volume (largest first: the boundary of F is resolved
 //! uniformly), the other half round-robin by the lowest lower end and the highest upper end of
@@ -35,13 +41,18 @@ use super::guide::{Guess, SAFETY, guess};
 use super::problem::{Problem, Target};
 use crate::engines::taylor::TaylorOptions;
 use crate::models::NdParams;
-use crate::observables::sets::{Inputs, prove_at_point, slopes_over_set};
+use crate::observables::sets::{Inputs, hull_over_set, prove_at_point, slopes_over_set};
 use inari::Interval;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::sync::Arc;
 use std::time::Instant;
+
+/// The local tolerance of the hulls' runs: their widths come from the boxes (≈ 10⁻³ at the
+/// resolution of the 2-D floor), and 10⁻⁶ took 10 % less time than the slopes' 10⁻¹⁰ there
+/// (10⁻⁴ grew too wide).
+const HULL_TOL: f64 = 1e-6;
 
 /// What is proved about a box.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -222,6 +233,8 @@ struct Open {
     /// The relative volume of the last box on which the slopes could not be proved: they are
     /// tried again on boxes at most a quarter of it.
     failed: f64,
+    /// Likewise for the hulls over the box (tried where the row has no slopes).
+    hull_failed: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -287,7 +300,20 @@ enum Verdict {
         u: Vec<Interval>,
         slopes: Option<Arc<RowSlopes>>,
         failed: f64,
+        hull_failed: f64,
     },
+}
+
+/// Per row, what its slopes (`[0]`) and its hulls (`[1]`) did: the largest relative volume on
+/// which they were proved and the smallest on which they failed.
+type Reach = [(f64, f64); 2];
+
+/// What to try for a row on a box: its slopes (it has them, or they are due), its hulls over
+/// the box (where it has no slopes).
+#[derive(Clone, Copy)]
+struct Plan {
+    slopes: bool,
+    hull: bool,
 }
 
 struct Ctx<'a> {
@@ -300,9 +326,9 @@ struct Ctx<'a> {
     /// wider than the former, or narrower than the latter: the variational runs' reach depends
     /// mostly on the impact speed, little on where the box is). Read-only during a batch, so
     /// that the paving does not depend on the order in which the threads finish.
-    reach: std::sync::RwLock<Vec<(f64, f64)>>,
+    reach: std::sync::RwLock<Vec<Reach>>,
     /// What the current batch's runs add to it (max and min commute: merged after the batch).
-    reach_new: Vec<std::sync::Mutex<(f64, f64)>>,
+    reach_new: Vec<std::sync::Mutex<Reach>>,
 }
 
 impl Ctx<'_> {
@@ -373,23 +399,44 @@ impl Ctx<'_> {
         k >= self.opts.refresh * u.len() as f64
     }
 
-    /// The verdict of row `o` on box `u` about centre `c`.
-    fn row(&self, o: &Open, u: &[Interval], c: &[Interval]) -> Verdict {
+    /// The time budget of one run over a box (slopes or hulls).
+    fn budgeted(&self) -> TaylorOptions {
+        let mut so = self.opts.slope_taylor.clone();
+        let own = Instant::now() + std::time::Duration::from_secs_f64(self.opts.slope_seconds);
+        so.deadline = Some(so.deadline.map_or(own, |d| d.min(own)));
+        so
+    }
+
+    /// The verdict of row `o` on box `u` about centre `c`: for a row without slopes its hulls
+    /// over the box first where they are due (one run, ≈ 1/4 of the slopes' cost: they decide
+    /// most boxes at the resolution), then the mean-value forms from its slopes.
+    fn row(&self, o: &Open, u: &[Interval], c: &[Interval], plan: Plan) -> Verdict {
+        let mut o = o.clone();
+        if o.slopes.is_none() && plan.hull {
+            match self.by_hull(&o, u, o.failed) {
+                Verdict::Open {
+                    e, tc, hull_failed, ..
+                } if e || tc => {
+                    o.e = e;
+                    o.tc = tc;
+                    o.hull_failed = hull_failed;
+                }
+                settled => return settled,
+            }
+        }
+        let o = &o;
         let row = &self.problem.rows[o.row];
         let mut slopes = o.slopes.clone();
         let mut failed = o.failed;
         let vol = volume(u, self.start);
         let due = match &slopes {
-            None => vol <= self.opts.slope_volume && vol <= o.failed / 4.0,
+            None => plan.slopes,
             Some(s) => self.stale(s, u),
         };
         if due {
             let base = self.problem.base(u);
             let t = Instant::now();
-            let mut so = self.opts.slope_taylor.clone();
-            let own = Instant::now() + std::time::Duration::from_secs_f64(self.opts.slope_seconds);
-            so.deadline = Some(so.deadline.map_or(own, |d| d.min(own)));
-            let r = slopes_over_set(self.problem.kind, &self.inputs(u, row.v0), &so);
+            let r = slopes_over_set(self.problem.kind, &self.inputs(u, row.v0), &self.budgeted());
             if trace() {
                 eprintln!(
                     "slopes row {} box {:?}: {:.3} s {}",
@@ -404,12 +451,12 @@ impl Ctx<'_> {
             match r {
                 Ok(s) => {
                     let mut r = self.reach_new[o.row].lock().expect("not poisoned");
-                    r.0 = r.0.max(vol);
+                    r[0].0 = r[0].0.max(vol);
                     slopes = Some(Arc::new(RowSlopes::new(&s, u, &self.free, base[5], row.v0)))
                 }
                 Err(_) => {
                     let mut r = self.reach_new[o.row].lock().expect("not poisoned");
-                    r.1 = r.1.min(vol);
+                    r[0].1 = r[0].1.min(vol);
                     failed = vol
                 }
             }
@@ -420,6 +467,7 @@ impl Ctx<'_> {
             u: u.to_vec(),
             slopes,
             failed,
+            hull_failed: o.hull_failed,
         };
         let Some(s) = slopes else {
             return keep(None);
@@ -498,7 +546,76 @@ impl Ctx<'_> {
             u: out,
             slopes: Some(s),
             failed,
+            hull_failed: o.hull_failed,
         }
+    }
+
+    /// The verdict of row `o` on box `u` by the hulls of T_s and e over it (`hull_over_set`:
+    /// the parameters as components, no derivative), for a row without slopes: e(U) (or
+    /// tc(U) ⊂ T_s(U)·c(p(U))) outside the outer target refutes the box, inside the inner one
+    /// closes the observable on it. No contraction (a hull has no slope).
+    fn by_hull(&self, o: &Open, u: &[Interval], failed: f64) -> Verdict {
+        let row = &self.problem.rows[o.row];
+        let vol = volume(u, self.start);
+        let open = |e, tc, hull_failed| Verdict::Open {
+            e,
+            tc,
+            u: u.to_vec(),
+            slopes: None,
+            failed,
+            hull_failed,
+        };
+        let t = Instant::now();
+        let mut ho = self.budgeted();
+        ho.tol = HULL_TOL;
+        let r = hull_over_set(self.problem.kind, &self.inputs(u, row.v0), &ho);
+        if trace() {
+            eprintln!(
+                "hull row {} box {:?}: {:.3} s {}",
+                o.row,
+                u.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
+                t.elapsed().as_secs_f64(),
+                r.as_ref()
+                    .map(|(ts, e)| format!("ok ts {:e} e {:e}", ts.wid(), e.wid()))
+                    .unwrap_or_else(|e| e.reason.clone())
+            );
+        }
+        let (ts, e) = match r {
+            Ok(r) => {
+                let mut m = self.reach_new[o.row].lock().expect("not poisoned");
+                m[1].0 = m[1].0.max(vol);
+                r
+            }
+            Err(_) => {
+                let mut m = self.reach_new[o.row].lock().expect("not poisoned");
+                m[1].1 = m[1].1.min(vol);
+                return open(o.e, o.tc, vol);
+            }
+        };
+        let tc = ts * tc_factor(row.v0, self.problem.base(u)[5]).0;
+        let mut still = [o.e, o.tc];
+        for (k, y, target) in [(0, e, Some(row.e)), (1, tc, row.tc)] {
+            let Some(target) = target.filter(|_| still[k]) else {
+                continue;
+            };
+            // an empty enclosure (an engine fault) decides nothing
+            if y.is_empty() {
+                continue;
+            }
+            if y.disjoint(target.outer()) {
+                return Verdict::Violated;
+            }
+            if target.inner().is_some_and(|i| y.subset(i)) {
+                still[k] = false;
+            }
+        }
+        // nothing closed: tried again on boxes at most half this one
+        let hull_failed = if still == [o.e, o.tc] {
+            2.0 * vol
+        } else {
+            o.hull_failed
+        };
+        open(still[0], still[1], hull_failed)
     }
 
     fn process(&self, node: Node, start: &[Interval]) -> Outcome {
@@ -520,17 +637,25 @@ impl Ctx<'_> {
                 .map(|o| guess(self.problem, &u, o.row, o.e, o.tc))
                 .collect();
             // a row can be tried when it has slopes, or they are due on this box and have not
-            // failed on a box less than 4 times its size; among the violated ones the one with
-            // slopes, else the slowest impact (the variational runs succeed on wider boxes at
-            // low speeds), else the surest
+            // failed on a box less than 4 times its size (in its lineage, and no wider than
+            // they were proved on or narrower than they failed on, anywhere), or likewise its
+            // hulls; among the violated ones the one with slopes, else the slowest impact (the
+            // variational runs succeed on wider boxes at low speeds), else the surest
             let vol = volume(&u, self.start);
-            let reach = self.reach.read().expect("not poisoned");
+            let reach = self.reach.read().expect("not poisoned").clone();
+            let plan = |o: &Open| {
+                let [(ok, bad), (hull_ok, hull_bad)] = reach[o.row];
+                let fits = |failed: f64, ok: f64, bad: f64| {
+                    vol <= self.opts.slope_volume && vol <= failed / 4.0 && (vol <= ok || vol < bad)
+                };
+                Plan {
+                    slopes: o.slopes.is_some() || fits(o.failed, ok, bad),
+                    hull: o.slopes.is_none() && fits(o.hull_failed, hull_ok, hull_bad),
+                }
+            };
             let tryable = |o: &Open| {
-                let (ok, bad) = reach[o.row];
-                o.slopes.is_some()
-                    || (vol <= self.opts.slope_volume
-                        && vol <= o.failed / 4.0
-                        && (vol <= ok || vol < bad))
+                let p = plan(o);
+                p.slopes || p.hull
             };
             let violated = guesses
                 .iter()
@@ -554,9 +679,13 @@ impl Ctx<'_> {
                 .map(|(i, _, _)| i);
             let tried: Vec<bool> = match violated {
                 Some(i) => (0..open.len()).map(|k| k == i).collect(),
-                None if guesses.iter().all(|g| *g == Guess::Inside) && open.iter().all(tryable) => {
-                    vec![true; open.len()]
-                }
+                // no row guessed violated: the rows guessed inside, so that the sub-boxes of a
+                // box that is bisected anyway (other rows open) do not run them again
+                None if !guesses.iter().any(|g| matches!(g, Guess::Violated { .. })) => guesses
+                    .iter()
+                    .zip(&open)
+                    .map(|(g, o)| *g == Guess::Inside && tryable(o))
+                    .collect(),
                 None => vec![false; open.len()],
             };
             let (mut active, mut waiting): (Vec<Open>, Vec<Open>) = (Vec::new(), Vec::new());
@@ -568,8 +697,10 @@ impl Ctx<'_> {
                     break;
                 }
                 let c = centre_of(&u);
-                let verdicts: Vec<Verdict> =
-                    active.par_iter().map(|o| self.row(o, &u, &c)).collect();
+                let verdicts: Vec<Verdict> = active
+                    .par_iter()
+                    .map(|o| self.row(o, &u, &c, plan(o)))
+                    .collect();
                 let mut next = u.clone();
                 let mut still = Vec::new();
                 for (o, v) in active.iter().zip(verdicts) {
@@ -584,6 +715,7 @@ impl Ctx<'_> {
                             u: k,
                             slopes,
                             failed,
+                            hull_failed,
                         } => {
                             for (x, y) in next.iter_mut().zip(&k) {
                                 *x = x.intersection(*y);
@@ -595,6 +727,7 @@ impl Ctx<'_> {
                                     tc,
                                     slopes,
                                     failed,
+                                    hull_failed,
                                 });
                             }
                         }
@@ -680,9 +813,9 @@ pub fn pave(
         free: problem.space.free(),
         opts,
         start,
-        reach: std::sync::RwLock::new(vec![(0.0, f64::INFINITY); problem.rows.len()]),
+        reach: std::sync::RwLock::new(vec![[(0.0, f64::INFINITY); 2]; problem.rows.len()]),
         reach_new: (0..problem.rows.len())
-            .map(|_| std::sync::Mutex::new((0.0, f64::INFINITY)))
+            .map(|_| std::sync::Mutex::new([(0.0, f64::INFINITY); 2]))
             .collect(),
     };
     let dim = start.len();
@@ -693,6 +826,7 @@ pub fn pave(
             tc: problem.rows[row].tc.is_some(),
             slopes: None,
             failed: f64::INFINITY,
+            hull_failed: f64::INFINITY,
         })
         .collect();
     let mut nodes: Vec<Option<Node>> = vec![Some(Node {

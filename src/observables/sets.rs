@@ -295,11 +295,7 @@ fn prove(
         // a derivative that cannot be carried: the hull of the parameters as components alone
         // (not once the time budget is spent)
         Err(e) if hull_fallback && !e.out_of_time() => {
-            return match kind {
-                ModelKind::Shc => hull::<_, 3, 13>(Shc::new, kind, inputs, &ranges, opts),
-                ModelKind::Maxwell => hull::<_, 4, 14>(Maxwell::new, kind, inputs, &ranges, opts),
-            }
-            .map_err(|h| RigorError {
+            return hull_any(kind, inputs, &ranges, opts).map_err(|h| RigorError {
                 reason: format!("{} (with slopes: {})", h.reason, e.reason),
                 ..h
             });
@@ -456,6 +452,55 @@ pub fn prove_at_point(
 ) -> Result<(Interval, Interval), RigorError> {
     let nd = inputs.nd(kind).map_err(param_error)?;
     point(kind, nd, opts).map(|r| (r.ts, r.e))
+}
+
+/// The hulls of T_s and e over a set of inputs (1 to [`MAX_UNCERTAIN`] ranges), with no
+/// derivative carried: one run of the system with the ranged inputs as components of the state
+/// (u̇ = 0), the fewest components that hold them. Wider than a mean-value form about a point
+/// (5–50× the true spread on the sets of `benches/RESULTS.md`), but it needs no variational
+/// block, so it is proved on sets where the slopes wrap (set-membership identification closes
+/// or refutes a row with it where the row's slopes fail, see `crate::identify`).
+pub fn hull_over_set(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<(Interval, Interval), RigorError> {
+    inputs.nd(kind).map_err(param_error)?;
+    let vals = inputs.values();
+    let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
+    if ranges.is_empty() || ranges.len() > MAX_UNCERTAIN {
+        return Err(RigorError {
+            reason: format!(
+                "{} inputs are ranges; 1 to {MAX_UNCERTAIN} can be",
+                ranges.len()
+            ),
+            t: 0.0,
+            width: 0.0,
+        });
+    }
+    hull_any(kind, inputs, &ranges, opts).map(|r| (r.ts, r.e))
+}
+
+/// [`hull`] at the smallest dimension the engine is compiled at that holds the ranges: the
+/// variational runs' (SHC 7, 8, 12, 16; Maxwell 9, 10, 14, 18) and SHC's 5, for the 2-D
+/// slices of identification (each padding component costs: 2 ranges at D = 5 took 0.75× the
+/// time of D = 7 on the 2-D floor of issue #31, the same boxes proved).
+fn hull_any(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    ranges: &[usize],
+    opts: &TaylorOptions,
+) -> Result<SetEnclosure, RigorError> {
+    match (kind, ranges.len()) {
+        (ModelKind::Shc, 0..=2) => hull::<_, 3, 5>(Shc::new, kind, inputs, ranges, opts),
+        (ModelKind::Shc, 3..=4) => hull::<_, 3, 7>(Shc::new, kind, inputs, ranges, opts),
+        (ModelKind::Shc, 5) => hull::<_, 3, 8>(Shc::new, kind, inputs, ranges, opts),
+        (ModelKind::Shc, 6..=9) => hull::<_, 3, 12>(Shc::new, kind, inputs, ranges, opts),
+        (ModelKind::Shc, _) => hull::<_, 3, 16>(Shc::new, kind, inputs, ranges, opts),
+        (ModelKind::Maxwell, 0..=5) => hull::<_, 4, 9>(Maxwell::new, kind, inputs, ranges, opts),
+        (ModelKind::Maxwell, 6) => hull::<_, 4, 10>(Maxwell::new, kind, inputs, ranges, opts),
+        (ModelKind::Maxwell, _) => hull::<_, 4, 14>(Maxwell::new, kind, inputs, ranges, opts),
+    }
 }
 
 /// Proved ∂T_s/∂u and ∂e/∂u of input `j` at the inputs' values (a point, or a range: then over
@@ -770,7 +815,8 @@ where
     })
 }
 
-/// The system (x, u_1, …, u_K) padded to [`MAX_UNCERTAIN`] parameter components: D = N + 10.
+/// The system (x, u_1, …, u_K) padded to D − N ≥ K parameter components (u̇ = 0): the hulls
+/// of T_s and e over the set, no derivative carried.
 fn hull<M, const N: usize, const D: usize>(
     build: impl Fn(NdParams<Rec<Interval>>) -> M,
     kind: ModelKind,
@@ -781,10 +827,11 @@ fn hull<M, const N: usize, const D: usize>(
 where
     M: CollisionModel<Rec<Interval>, N>,
 {
-    assert_eq!(D, N + MAX_UNCERTAIN);
+    let slots = D - N;
+    assert!(ranges.len() <= slots);
     let vals = inputs.values();
     let zero = Interval::try_from((0.0, 0.0)).unwrap();
-    let (params, mut x0) = parameter_slots::<N, D>(&vals, ranges, MAX_UNCERTAIN);
+    let (params, mut x0) = parameter_slots::<N, D>(&vals, ranges, slots);
     let tape = Tape::<Interval, D>::record_with(params, |v| {
         let rv: Vec<Rec<Interval>> = (0..vals.len())
             .map(|i| match ranges.iter().position(|&r| r == i) {
@@ -799,7 +846,7 @@ where
         let m = build(nd);
         let xs: [Rec<Interval>; N] = std::array::from_fn(|i| v[i].clone());
         let mut o = m.field(&xs).to_vec();
-        o.extend((0..MAX_UNCERTAIN).map(|_| Rec::constant(zero)));
+        o.extend((0..slots).map(|_| Rec::constant(zero)));
         o.extend([m.force(&xs), m.velocity(&xs)]);
         o
     });
