@@ -380,14 +380,9 @@ pub struct SetSlopes {
     pub slopes: Vec<(usize, Option<Slope>)>,
 }
 
-/// [`SetSlopes`] of model `kind` over `inputs` (at least one range): one run of the variational
-/// system per ranged input, in parallel. A run that fails fails the whole (the hull then comes
-/// from [`prove_over_set`]).
-pub fn slopes_over_set(
-    kind: ModelKind,
-    inputs: &Inputs<Interval>,
-    opts: &TaylorOptions,
-) -> Result<SetSlopes, RigorError> {
+/// The indices of the ranged inputs (1 to [`MAX_UNCERTAIN`] of them) of valid inputs: what a
+/// run over a set needs.
+fn ranged(kind: ModelKind, inputs: &Inputs<Interval>) -> Result<Vec<usize>, RigorError> {
     inputs.nd(kind).map_err(param_error)?;
     let vals = inputs.values();
     let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
@@ -401,6 +396,18 @@ pub fn slopes_over_set(
             width: 0.0,
         });
     }
+    Ok(ranges)
+}
+
+/// [`SetSlopes`] of model `kind` over `inputs` (at least one range): one run of the variational
+/// system per ranged input, in parallel. A run that fails fails the whole (the hull then comes
+/// from [`prove_over_set`]).
+pub fn slopes_over_set(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<SetSlopes, RigorError> {
+    let ranges = ranged(kind, inputs)?;
     // the fewest parameter slots that hold the ranges (each slot is a state component)
     let one = |d: usize| match (kind, ranges.len()) {
         (ModelKind::Shc, 1) => variational::<_, 3, 1, 7>(Shc::new, kind, inputs, &ranges, d, opts),
@@ -465,19 +472,7 @@ pub fn hull_over_set(
     inputs: &Inputs<Interval>,
     opts: &TaylorOptions,
 ) -> Result<(Interval, Interval), RigorError> {
-    inputs.nd(kind).map_err(param_error)?;
-    let vals = inputs.values();
-    let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
-    if ranges.is_empty() || ranges.len() > MAX_UNCERTAIN {
-        return Err(RigorError {
-            reason: format!(
-                "{} inputs are ranges; 1 to {MAX_UNCERTAIN} can be",
-                ranges.len()
-            ),
-            t: 0.0,
-            width: 0.0,
-        });
-    }
+    let ranges = ranged(kind, inputs)?;
     hull_any(kind, inputs, &ranges, opts).map(|r| (r.ts, r.e))
 }
 
