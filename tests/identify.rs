@@ -7,6 +7,7 @@ use crate::common;
 use bwcl::fit::cost::model_cor;
 use bwcl::fit::data::CorData;
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
+use bwcl::identify::sample::{feasible, sample};
 use bwcl::identify::setup::{Spec, problem};
 use bwcl::models::{ModelKind, NdParams};
 use bwcl::observables::FloatOptions;
@@ -200,6 +201,87 @@ fn the_generating_set_is_never_proved_infeasible_under_bounded_noise() {
     }
     // the test decides something
     assert!(nf > 0 && ni > 0, "feasible {nf}, infeasible {ni}");
+}
+
+/// `--sample`'s f64 inner estimate against the paving's proved outer one, on a one-parameter
+/// problem (F an interval): every sampled point has f64 residuals within E (checked by an
+/// independent path, `model_cor` on all rows); none lies in a box proved infeasible (those
+/// with residuals E − 10⁻⁶ at most: truly feasible, the f64 engine's error being ≪ 10⁻⁶); the
+/// sampled hull is inside the proved one, and the pushes bring its ends within a box of the
+/// resolution of the proved ends (inner and outer estimates bracket F's hull tightly). A
+/// negative control: `feasible` rejects the uniform points whose residuals exceed E.
+#[test]
+fn sampled_points_are_feasible_and_bracket_the_proved_hull() {
+    let kind = ModelKind::Shc;
+    let truth = [1.43, -1.42, 0.632, 0.00715, 1.31, 1.27];
+    let v0 = vec![0.5, 2.5];
+    let p = NdParams {
+        b: truth[0],
+        gamma: truth[1],
+        kappa: truth[2],
+        sigma: truth[3],
+        n: truth[4],
+        p: truth[5],
+    };
+    let e: Vec<f64> = model_cor(kind, &p, &v0, &FloatOptions::default())
+        .into_iter()
+        .map(|r| r.unwrap() + 0.002)
+        .collect();
+    let data = CorData::new(v0, e).unwrap();
+    let e_err = 0.01;
+    let spec = Spec {
+        base: Some("1.43,-1.42,0.632,0.00715,1.31,1.27"),
+        bounds: Some("sigma_b=0.001..0.03"),
+        error: Some(e_err),
+        ..Spec::default()
+    };
+    let (prob, start) = problem(kind, &data, &spec).unwrap();
+    let sp = sample(&prob, &start, 200, 7);
+    assert!(sp.uniform_feasible > 0 && sp.points.len() > sp.uniform_feasible);
+    let at = |x: f64| {
+        let mut q = truth;
+        q[3] = x;
+        q
+    };
+    for x in &sp.points {
+        let r = worst_residual(kind, at(x[0]), &data);
+        assert!(r <= e_err + 1e-9, "{x:?}: residual {r}");
+    }
+    // negative control: points off F are rejected
+    let mut rejected = 0;
+    for k in 0..=60 {
+        let x = start[0].inf() + start[0].wid() * k as f64 / 60.0;
+        let r = worst_residual(kind, at(x), &data);
+        if r > e_err + 1e-9 {
+            assert!(!feasible(&prob, &[x]), "{x} accepted with residual {r}");
+            rejected += 1;
+        }
+    }
+    assert!(rejected > 0, "the control tests nothing");
+    let div = 256.0;
+    let (pav, _) = run(kind, &data, &spec, div, 2000);
+    assert!(pav.stopped.is_none(), "{:?}", pav.stopped);
+    for x in &sp.points {
+        if worst_residual(kind, at(x[0]), &data) > e_err - 1e-6 {
+            continue;
+        }
+        for b in pav.boxes.iter().filter(|b| b.status == Status::Infeasible) {
+            assert!(
+                !(b.lo[0] <= x[0] && x[0] <= b.hi[0]),
+                "the feasible {x:?} in the infeasible {b:?}"
+            );
+        }
+    }
+    let (inner, outer) = (sp.hull().unwrap()[0], pav.hull().unwrap()[0]);
+    let cell = start[0].wid() / div;
+    assert!(
+        outer.0 <= inner.0 && inner.1 <= outer.1,
+        "{inner:?} ⊄ {outer:?}"
+    );
+    assert!(
+        inner.0 - outer.0 <= 2.0 * cell && outer.1 - inner.1 <= 2.0 * cell,
+        "sampled {inner:?}, proved {outer:?}, cell {cell}"
+    );
 }
 
 /// An error far below the noise: F is proved empty (the model falsified at that error) — a

@@ -46,6 +46,10 @@ class IdentifyResult:
     seconds: float
     #: A classical law's empty F: the rows that refute each range of its parameter.
     certificate: Tuple[str, ...] = ()
+    #: ``sample=N``: {"tested": points tested, "feasible": found feasible by the f64 engine,
+    #: "hull": {name: (lo, hi)} of those points or None} — an unproved inner estimate of F's
+    #: hull, beside the proved outer ``hull``; None without ``sample``.
+    sampled: Optional[Dict[str, Any]] = None
 
     @property
     def empty(self) -> bool:
@@ -135,6 +139,9 @@ def _result(d: dict) -> IdentifyResult:
         shares=dict(d["shares"]), verdict=d["verdict"], complete=d["complete"],
         processed=d["processed"], seconds=d["seconds"],
         certificate=tuple(d.get("certificate", ())),
+        sampled=None if d.get("sampled") is None else {
+            "tested": d["sampled"]["tested"], "feasible": d["sampled"]["feasible"],
+            "hull": pairs(d["sampled"]["hull"])},
     )
 
 
@@ -152,6 +159,7 @@ def identify(
     resolution: Optional[int] = None,
     time_limit: Optional[float] = None,
     max_boxes: Optional[int] = None,
+    sample: int = 0,
     v0: Any = None,
     e: Any = None,
     sigma: Any = None,
@@ -171,7 +179,10 @@ def identify(
     ``certificate``, the rows that refute each range. ``resolution``: 128 for the Bouc–Wen
     models, 2^20 for a law. Bad input raises ValueError with the program's one line.
     ``progress``: True for a bar (tqdm when installed) or a callable receiving ``(share,
-    message)``: the share of the box decided (a Bouc–Wen model), at most every 0.1 s."""
+    message)``: the share of the box decided (a Bouc–Wen model), at most every 0.1 s.
+    ``sample``: N > 0 also samples F with the f64 engine (N uniform points, then pushes towards
+    the box's faces): ``result.sampled["hull"]`` is the hull of the points found feasible, an
+    unproved inner estimate of F's hull (a Bouc–Wen model)."""
     path, temp = _data_file(data, v0, e, sigma, tc, tc_sigma)
     try:
         argv = ["identify", f"--model={model}", f"--data={path}", "--format=json"]
@@ -198,6 +209,8 @@ def identify(
             argv.append(f"--time-limit={float(time_limit)!r}")
         if max_boxes is not None:
             argv.append(f"--max-boxes={int(max_boxes)}")
+        if sample:
+            argv.append(f"--sample={int(sample)}")
         from ._progress import share as _share
 
         cb = _share(progress, "identify")

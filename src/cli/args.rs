@@ -551,6 +551,13 @@ pub struct IdentifyArgs {
     #[arg(long, value_name = "K", default_value_t = 1_000_000, allow_hyphen_values = true,
           value_parser = RangedU64ValueParser::<u64>::new().range(MAX_BOXES))]
     pub max_boxes: u64,
+    /// Also sample F with the f64 engine: N uniform points of the box, then pushes from the
+    /// feasible ones towards the box's faces, 0 ≤ N ≤ 10^7 [default: 0, none]. The hull of the
+    /// points found feasible (an unproved inner estimate of F's hull) is printed beside the
+    /// proved outer hull.
+    #[arg(long, value_name = "N", default_value_t = 0, allow_hyphen_values = true,
+          value_parser = count(0..=10_000_000))]
+    pub sample: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t = IdentifyFormat::Table)]
     pub format: IdentifyFormat,

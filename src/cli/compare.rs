@@ -356,6 +356,7 @@ pub fn identify(a: &IdentifyArgs, law: Law, bar: bool) -> Result<Done, CliError>
         free,
         paving,
         refuted: Some((refuted, data, whole)),
+        sampled: None,
     })
 }
 

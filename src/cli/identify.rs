@@ -7,6 +7,7 @@ use super::output::{self, outward};
 use super::progress::Progress;
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
+use bwcl::identify::sample::{Sampled, sample};
 use bwcl::identify::setup::{Spec, problem};
 use bwcl::observables::decimal::Rounding;
 use inari::Interval;
@@ -14,6 +15,9 @@ use serde::Serialize;
 use serde_json::value::RawValue;
 use std::collections::{BTreeMap, HashSet};
 use std::fmt::Write as _;
+
+/// The seed of `--sample`'s points (the same points on every run).
+const SAMPLE_SEED: u64 = 31;
 
 /// A bound rounded outward as a JSON number (null when not finite).
 fn bound(x: f64, dir: Rounding) -> Box<RawValue> {
@@ -33,6 +37,15 @@ struct BoxOut {
     lo: Vec<Box<RawValue>>,
     hi: Vec<Box<RawValue>>,
     status: Status,
+}
+
+#[derive(Serialize)]
+struct SampledOut {
+    uniform: usize,
+    uniform_feasible: usize,
+    tested: usize,
+    feasible: usize,
+    hull: Option<BTreeMap<&'static str, [f64; 2]>>,
 }
 
 #[derive(Serialize)]
@@ -65,6 +78,10 @@ struct IdentifyOut<'a> {
     hull: Option<BTreeMap<&'static str, [Box<RawValue>; 2]>>,
     /// The hull of the boxes proved feasible (an inner estimate of F's hull); null when none.
     feasible_hull: Option<BTreeMap<&'static str, [Box<RawValue>; 2]>>,
+    /// `--sample`: the points tested, those found feasible by the f64 engine, and their hull
+    /// (not proved: an estimate of F's hull from inside; null when none was found).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sampled: Option<SampledOut>,
     counts: Counts,
     /// Shares of the starting box's volume (each side relative to the box's).
     shares: Shares,
@@ -153,6 +170,8 @@ pub struct Done {
         bwcl::fit::CorData,
         bool,
     )>,
+    /// `--sample N`: the f64-feasible points found (not proved).
+    pub sampled: Option<Sampled>,
 }
 
 /// Reads the data, builds the problem and paves the box (a progress bar on a terminal when
@@ -204,6 +223,7 @@ pub fn compute(
     if let Some(b) = &progress {
         b.finish();
     }
+    let sampled = (a.sample > 0).then(|| sample(&prob, &start, a.sample, SAMPLE_SEED));
     Ok(Done {
         model: kind.name(),
         rows: prob.rows.len(),
@@ -211,6 +231,7 @@ pub fn compute(
         free: prob.space.free_names(),
         paving,
         refuted: None,
+        sampled,
     })
 }
 
@@ -232,6 +253,15 @@ pub fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
         empty: hull.is_none(),
         hull: hull.as_ref().map(|h| named(free, h)),
         feasible_hull: paving.feasible_hull().map(|h| named(free, &h)),
+        sampled: d.sampled.as_ref().map(|s| SampledOut {
+            uniform: s.uniform,
+            uniform_feasible: s.uniform_feasible,
+            tested: s.tested,
+            feasible: s.points.len(),
+            hull: s
+                .hull()
+                .map(|h| free.iter().zip(h).map(|(n, (a, b))| (*n, [a, b])).collect()),
+        }),
         counts: Counts {
             feasible: nf,
             infeasible: ni,
@@ -316,6 +346,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
             if let Some(h) = &hull {
                 s.push('\n');
                 let fh = paving.feasible_hull();
+                let sh = d.sampled.as_ref().and_then(Sampled::hull);
                 let rows: Vec<Vec<String>> = free
                     .iter()
                     .enumerate()
@@ -340,17 +371,40 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
                                 )
                             }),
                         ]
+                        .into_iter()
+                        .chain(d.sampled.as_ref().map(|_| match &sh {
+                            Some(sh) => format!(
+                                "{:.6}..{:.6} ({:.2}×)",
+                                sh[j].0,
+                                sh[j].1,
+                                (h[j].1 - h[j].0) / (sh[j].1 - sh[j].0)
+                            ),
+                            None => "none found".into(),
+                        }))
+                        .collect()
                     })
                     .collect();
-                s.push_str(&output::table(
-                    &[
-                        "parameter",
-                        "box",
-                        "hull of F (proved)",
-                        "hull of the feasible boxes",
-                    ],
-                    &rows,
-                ));
+                let mut head = vec![
+                    "parameter",
+                    "box",
+                    "hull of F (proved)",
+                    "hull of the feasible boxes",
+                ];
+                if d.sampled.is_some() {
+                    head.push("hull of f64-sampled points (proved width / its)");
+                }
+                s.push_str(&output::table(&head, &rows));
+                if let Some(sp) = &d.sampled {
+                    let _ = writeln!(
+                        s,
+                        "\n--sample: {} of {} uniform points feasible by the f64 engine, {} of {} \
+                         with the pushes towards the faces (not proved)",
+                        sp.uniform_feasible,
+                        sp.uniform,
+                        sp.points.len(),
+                        sp.tested
+                    );
+                }
             }
             let _ = writeln!(
                 s,

@@ -14,13 +14,15 @@
 //! - [`problem`]: the constraints, the data's decimals enclosed;
 //! - [`form`]: mean-value forms over boxes from proved slopes, and the contractor they give;
 //! - [`guide`]: f64 guesses of which rows a rigorous attempt can decide on a box;
-//! - [`paving`]: the work queue (SIVIA with contractors, in parallel).
+//! - [`paving`]: the work queue (SIVIA with contractors, in parallel);
+//! - [`sample`]: an f64 inner estimate of F's hull (sampled feasible points, not proved).
 
 pub mod form;
 pub mod guide;
 pub mod laws;
 pub mod paving;
 pub mod problem;
+pub mod sample;
 pub mod setup;
 
 pub use paving::{Leaf, Options, Paving, Progress, Status, pave};

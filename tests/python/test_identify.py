@@ -39,6 +39,17 @@ def test_identify_matches_the_program(tmp_path, cli):
     assert r.counts["feasible"] > 0 and r.complete
 
 
+def test_sample_brackets_the_proved_hull(tmp_path):
+    """``sample=N``: the hull of the f64-feasible points lies inside the proved hull, holds the
+    generating σ_b (the data are within E of its curve), and is absent without ``sample``."""
+    p = _write(tmp_path)
+    r = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=16, sample=100)
+    assert r.sampled is not None and 0 < r.sampled["feasible"] <= r.sampled["tested"]
+    (a, b), (lo, hi) = r.sampled["hull"]["sigma_b"], r.hull["sigma_b"]
+    assert lo <= a <= 0.00715 <= b <= hi
+    assert bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=4).sampled is None
+
+
 def test_arrays_give_the_same_paving(tmp_path):
     p = _write(tmp_path)
     a = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=8)
