@@ -21,19 +21,26 @@ pub const END: &str = "<!-- laws:end -->";
 const LO: &str = "0.05";
 const HI: &str = "0.99";
 const POINTS: usize = 100;
+/// The grid of `--quick` (the tests: the same study, coarser).
+const QUICK_POINTS: usize = 12;
 const TOL: &str = "0.001";
 
 pub struct Laws {
     pub studies: Vec<FormulaStudy>,
+    /// Targets of the grid.
+    pub points: usize,
     pub seconds: f64,
 }
 
-pub fn run() -> Result<Laws, String> {
+/// The study on the issue's grid, or the coarser one of `--quick`.
+pub fn run(quick: bool) -> Result<Laws, String> {
     let t = std::time::Instant::now();
     let tol = Big::parse_decimal(TOL)?;
-    let studies = study(&DampingFormula::ALL, LO, HI, POINTS, &tol)?;
+    let points = if quick { QUICK_POINTS } else { POINTS };
+    let studies = study(&DampingFormula::ALL, LO, HI, points, &tol)?;
     Ok(Laws {
         studies,
+        points,
         seconds: t.elapsed().as_secs_f64(),
     })
 }
@@ -127,10 +134,11 @@ pub fn render(r: &mut String, laws: &Laws) {
          CoR e*; each is a function σ(e*). The CoR the law really produces solves \
          G(σe) = G(−σ) with G(u) = −u − ln(1 − u), whatever n (src/models/hunt_crossley.rs; \
          Carvalho & Martins' exact relation). `bwcl laws` proves e(σ(e*)) and the error \
-         e − e* in 128-bit interval arithmetic: at {POINTS} targets in [{LO}, {HI}], and over \
+         e − e* in 128-bit interval arithmetic: at {} targets in [{LO}, {HI}], and over \
          the whole range the runs where |e − e*| ≤ {TOL} holds (every e* of the run, by \
          paving the range with pieces down to 1e-8 wide; ends printed inward). The rigorous \
-         ODE engine agrees with the closed form at n = 1.5 (tests/laws.rs).\n"
+         ODE engine agrees with the closed form at n = 1.5 (tests/laws.rs).\n",
+        laws.points
     )
     .unwrap();
     writeln!(
@@ -168,7 +176,7 @@ pub fn render(r: &mut String, laws: &Laws) {
         r,
         "\nErrors are 128-bit enclosures (narrower than 1e-30), rounded outward to 3 digits. \
          Undecided pieces at the 1e-8 floor: {}. \
-         {} formulas × {POINTS} targets and the pavings in {:.1} s (2 cores). Data \
+         {} formulas × {} targets and the pavings in {:.1} s (2 cores). Data \
          `laws_formula_errors.csv`, plot `laws_formula_errors.svg/.png`; redo with \
          `cargo run --release --bin paper-repro -- laws`.",
         if undecided.is_empty() {
@@ -177,6 +185,7 @@ pub fn render(r: &mut String, laws: &Laws) {
             undecided.join(", ")
         },
         laws.studies.len(),
+        laws.points,
         laws.seconds
     )
     .unwrap();

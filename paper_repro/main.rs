@@ -193,7 +193,7 @@ fn run(args: Args) -> Result<(), String> {
     let t_all = std::time::Instant::now();
     if let Some(Cmd::Laws) = &args.command {
         eprintln!("the Hunt–Crossley damping formulas, proved…");
-        let l = laws::run()?;
+        let l = laws::run(args.quick)?;
         let files = laws::write(&out, &l)?;
         laws::replace_section(&report_path, &l)?;
         eprintln!(
@@ -333,7 +333,7 @@ fn run(args: Args) -> Result<(), String> {
 
     // the classical damping formulas (issue #33)
     eprintln!("the Hunt–Crossley damping formulas, proved…");
-    let laws = laws::run()?;
+    let laws = laws::run(args.quick)?;
     files.extend(laws::write(&out, &laws)?);
 
     let ctx = report::Context {
