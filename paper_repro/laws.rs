@@ -10,7 +10,7 @@ use crate::plot::{Chart, Series, save};
 use bwcl::arith::Real;
 use bwcl::models::hunt_crossley::DampingFormula;
 use bwcl::observables::decimal::{self, Rounding};
-use bwcl::observables::restitution::{Big, FormulaStudy, Verdict, evaluate, study};
+use bwcl::observables::restitution::{Big, FormulaStudy, MIN_WIDTH, Verdict, evaluate, study};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -21,14 +21,17 @@ pub const END: &str = "<!-- laws:end -->";
 const LO: &str = "0.05";
 const HI: &str = "0.99";
 const POINTS: usize = 100;
-/// The grid of `--quick` (the tests: the same study, coarser).
+/// The grid of `--quick` (the tests: the same study, coarser), and its narrowest pieces.
 const QUICK_POINTS: usize = 12;
+const QUICK_MIN_WIDTH: f64 = 1e-4;
 const TOL: &str = "0.001";
 
 pub struct Laws {
     pub studies: Vec<FormulaStudy>,
     /// Targets of the grid.
     pub points: usize,
+    /// The narrowest pieces of the pavings.
+    pub min_width: f64,
     pub seconds: f64,
 }
 
@@ -36,11 +39,16 @@ pub struct Laws {
 pub fn run(quick: bool) -> Result<Laws, String> {
     let t = std::time::Instant::now();
     let tol = Big::parse_decimal(TOL)?;
-    let points = if quick { QUICK_POINTS } else { POINTS };
-    let studies = study(&DampingFormula::ALL, LO, HI, points, &tol)?;
+    let (points, min_width) = if quick {
+        (QUICK_POINTS, QUICK_MIN_WIDTH)
+    } else {
+        (POINTS, MIN_WIDTH)
+    };
+    let studies = study(&DampingFormula::ALL, LO, HI, points, &tol, min_width)?;
     Ok(Laws {
         studies,
         points,
+        min_width,
         seconds: t.elapsed().as_secs_f64(),
     })
 }
@@ -136,9 +144,9 @@ pub fn render(r: &mut String, laws: &Laws) {
          Carvalho & Martins' exact relation). `bwcl laws` proves e(σ(e*)) and the error \
          e − e* in 128-bit interval arithmetic: at {} targets in [{LO}, {HI}], and over \
          the whole range the runs where |e − e*| ≤ {TOL} holds (every e* of the run, by \
-         paving the range with pieces down to 1e-8 wide; ends printed inward). The rigorous \
+         paving the range with pieces down to {:e} wide; ends printed inward). The rigorous \
          ODE engine agrees with the closed form at n = 1.5 (tests/laws.rs).\n",
-        laws.points
+        laws.points, laws.min_width
     )
     .unwrap();
     writeln!(
@@ -175,10 +183,11 @@ pub fn render(r: &mut String, laws: &Laws) {
     writeln!(
         r,
         "\nErrors are 128-bit enclosures (narrower than 1e-30), rounded outward to 3 digits. \
-         Undecided pieces at the 1e-8 floor: {}. \
+         Undecided pieces at the {:e} floor: {}. \
          {} formulas × {} targets and the pavings in {:.1} s (2 cores). Data \
          `laws_formula_errors.csv`, plot `laws_formula_errors.svg/.png`; redo with \
          `cargo run --release --bin paper-repro -- laws`.",
+        laws.min_width,
         if undecided.is_empty() {
             "none".to_string()
         } else {

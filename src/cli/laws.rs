@@ -93,7 +93,7 @@ pub fn report(a: &LawsArgs) -> Result<Vec<u8>, CliError> {
     let tol = tolerance(&a.tol)?;
     super::input::out_path(a.out.as_deref())?;
     let start = Instant::now();
-    let results = study(&list, &lo, &hi, a.points, &tol).map_err(CliError::Failed)?;
+    let results = study(&list, &lo, &hi, a.points, &tol, MIN_WIDTH).map_err(CliError::Failed)?;
     let seconds = start.elapsed().as_secs_f64();
     match a.format {
         Format::Table => Ok(table(&results, &a.tol, seconds).into_bytes()),

@@ -368,6 +368,7 @@ pub fn study(
     hi: &str,
     points: usize,
     tol: &Big,
+    min_width: f64,
 ) -> Result<Vec<FormulaStudy>, String> {
     let grid = target_grid(lo, hi, points)?;
     let (plo, phi) = (outward(lo, Rounding::Down)?, outward(hi, Rounding::Up)?);
@@ -389,7 +390,7 @@ pub fn study(
             Ok(FormulaStudy {
                 formula: f,
                 points,
-                segments: pave_within(f, plo, phi, tol, MIN_WIDTH),
+                segments: pave_within(f, plo, phi, tol, min_width),
             })
         })
         .collect()

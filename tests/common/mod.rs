@@ -42,13 +42,20 @@ pub fn hunt_crossley_bracket(sigma: &Rational) -> (Rational, Rational) {
     let c = s.clone() - (s.clone() + 1u32).ln();
     let g = |u: &Float| -u.clone() - (one() - u).ln() - &c;
     let mut u = Float::with_val(BITS, 0.5);
+    // Newton converges quadratically: it stops once a step moves u by less than 1e−115 (the
+    // bracket's check below fails if it stopped short)
+    let tiny = Float::with_val(BITS, Float::parse("1e-115").unwrap());
     for _ in 0..400 {
         let dg = one() / (one() - &u) - 1u32;
         let mut next = u.clone() - g(&u) / dg;
         if next >= 1u32 {
             next = (u.clone() + 1u32) / 2u32;
         }
+        let step = Float::with_val(BITS, &next - &u).abs();
         u = next;
+        if step < tiny {
+            break;
+        }
     }
     let eps = Float::with_val(BITS, Float::parse("1e-90").unwrap());
     let (a, b) = (u.clone() - &eps, u.clone() + &eps);
