@@ -93,14 +93,7 @@ fn the_hunt_crossley_feasible_set_is_paved_exactly() {
 
 /// The f64 residuals at a point: max_i |e(𝓟(P*, v0_i)) − e_i| (∞ when not evaluated).
 fn worst_residual(kind: ModelKind, base: [f64; 6], data: &CorData) -> f64 {
-    let p = NdParams {
-        b: base[0],
-        gamma: base[1],
-        kappa: base[2],
-        sigma: base[3],
-        n: base[4],
-        p: base[5],
-    };
+    let p = NdParams::from_array(base);
     model_cor(kind, &p, &data.v0, &FloatOptions::default())
         .iter()
         .zip(&data.e)
@@ -132,14 +125,7 @@ fn samples(b: &Leaf, k: usize) -> Vec<Vec<f64>> {
 fn the_generating_set_is_never_proved_infeasible_under_bounded_noise() {
     let kind = ModelKind::Shc;
     let truth = [1.43, -1.42, 0.632, 0.00715, 1.31, 1.27];
-    let p = NdParams {
-        b: truth[0],
-        gamma: truth[1],
-        kappa: truth[2],
-        sigma: truth[3],
-        n: truth[4],
-        p: truth[5],
-    };
+    let p = NdParams::from_array(truth);
     let v0 = vec![0.5, 2.5];
     let clean: Vec<f64> = model_cor(kind, &p, &v0, &FloatOptions::default())
         .into_iter()
@@ -215,14 +201,7 @@ fn sampled_points_are_feasible_and_bracket_the_proved_hull() {
     let kind = ModelKind::Shc;
     let truth = [1.43, -1.42, 0.632, 0.00715, 1.31, 1.27];
     let v0 = vec![0.5, 2.5];
-    let p = NdParams {
-        b: truth[0],
-        gamma: truth[1],
-        kappa: truth[2],
-        sigma: truth[3],
-        n: truth[4],
-        p: truth[5],
-    };
+    let p = NdParams::from_array(truth);
     let e: Vec<f64> = model_cor(kind, &p, &v0, &FloatOptions::default())
         .into_iter()
         .map(|r| r.unwrap() + 0.002)

@@ -40,17 +40,6 @@ pub enum Guess {
     Open,
 }
 
-fn params(b: [f64; 6]) -> NdParams<f64> {
-    NdParams {
-        b: b[0],
-        gamma: b[1],
-        kappa: b[2],
-        sigma: b[3],
-        n: b[4],
-        p: b[5],
-    }
-}
-
 /// The guess for row `row` (its observables `e`, `tc` still open) on box `u`.
 pub fn guess(problem: &Problem, u: &[Interval], row: usize, e: bool, tc: bool) -> Guess {
     let opts = CostOptions::default();
@@ -59,7 +48,7 @@ pub fn guess(problem: &Problem, u: &[Interval], row: usize, e: bool, tc: bool) -
     let mid = |x: &[Interval]| -> [f64; 6] { problem.base(x).map(|i| i.mid()) };
     let c = mid(u);
     // e and tc of the f64 engine (one integration gives both)
-    let obs = |b: [f64; 6]| model_point(problem.kind, &params(b), v0, &opts).ok();
+    let obs = |b: [f64; 6]| model_point(problem.kind, &NdParams::from_array(b), v0, &opts).ok();
     let Some(y0) = obs(c) else {
         return Guess::Open;
     };

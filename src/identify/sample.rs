@@ -73,14 +73,7 @@ pub fn feasible(problem: &Problem, x: &[f64]) -> bool {
     if b[1].abs() >= b[0] || b[1].is_nan() {
         return false;
     }
-    let base = NdParams {
-        b: b[0],
-        gamma: b[1],
-        kappa: b[2],
-        sigma: b[3],
-        n: b[4],
-        p: b[5],
-    };
+    let base = NdParams::from_array(b);
     let opts = CostOptions::default();
     problem.rows.iter().all(|r| {
         let Ok((e, tc)) = model_point(problem.kind, &base, r.v0.mid(), &opts) else {

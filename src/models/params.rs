@@ -108,6 +108,22 @@ pub struct NdParams<R> {
     pub p: R,
 }
 
+impl<R> NdParams<R> {
+    /// The set of the fields in the paper's order (B, Γ, κ, σ, n, p): the inverse of
+    /// [`NdParams::as_array`], unchecked like the struct literal (see [`NdParams::new`] for a
+    /// validated set).
+    pub fn from_array([b, gamma, kappa, sigma, n, p]: [R; 6]) -> Self {
+        Self {
+            b,
+            gamma,
+            kappa,
+            sigma,
+            n,
+            p,
+        }
+    }
+}
+
 impl<R: Real> NdParams<R> {
     /// Builds a set and validates it against `kind`'s 𝓟 (open set).
     pub fn new(
