@@ -6,7 +6,7 @@
 //! |---|---|
 //! | a-priori inclusion test of the Taylor step | `a_taylor_step_whose_first_guess_fails` |
 //! | Picard inclusion test of the low-order step | `low_order_steps_toward_a_blow_up` |
-//! | error term of Q⁻¹ in Lohner's method | `q_inverse_encloses_the_exact_inverse` |
+//! | the set carried between steps (affine symbols, the image's error term) | `a_rotating_box_is_carried_as_an_affine_set` |
 //! | interval Newton's existence proof N(T) ⊆ int T | `newton_claims_no_root_it_has_not_proved` |
 //! | the T_s enclosure | `harmonic_separation_encloses_pi_exactly` |
 //! | grazing: undecidable, never guessed | `a_grazing_event_is_undecided` |
@@ -20,12 +20,12 @@ use bwcl::arith::Scalar;
 use bwcl::engines::taylor::TaylorOptions;
 use bwcl::engines::taylor::event::{Verdict, scan_piece};
 use bwcl::engines::taylor::flow::point;
-use bwcl::engines::taylor::lohner::inverse_enclosure;
 use bwcl::engines::taylor::newton::{Newton, interval_newton};
 use bwcl::engines::taylor::step::{
     StepOut, Tapes, Workspaces, jacobian_orders, low_order_step, taylor_eval, taylor_step,
 };
 use bwcl::engines::taylor::tape::{Tape, Workspace};
+use bwcl::engines::taylor::window::Window;
 use bwcl::models::{Admissibility, ModelKind, NdParams, Shc};
 use bwcl::observables::rigorous::rigorous_impact;
 use inari::Interval;
@@ -139,125 +139,41 @@ fn low_order_steps_toward_a_blow_up() {
     assert!(validated >= 3);
 }
 
-/// The exact inverse of a 3×3 matrix of doubles, as rationals (adjugate / determinant).
-fn exact_inverse(q: &[[f64; 3]; 3]) -> [[Rational; 3]; 3] {
-    let r = |i: usize, j: usize| Rational::from_f64(q[i][j]).unwrap();
-    let minor = |i: usize, j: usize| {
-        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-        let (c, d) = ((j + 1) % 3, (j + 2) % 3);
-        // cofactor with the cyclic index trick (signs included)
-        r(a, c) * r(b, d) - r(a, d) * r(b, c)
-    };
-    let det = r(0, 0) * minor(0, 0) + r(0, 1) * minor(0, 1) + r(0, 2) * minor(0, 2);
-    std::array::from_fn(|i| std::array::from_fn(|j| minor(j, i) / det.clone()))
-}
-
-/// Asserts that every entry of the enclosure `qi` of Q⁻¹ holds the exact inverse (as
-/// rationals); returns the exact inverse.
-fn inverse_holds_exact(
-    q: &[[f64; 3]; 3],
-    qi: &[[Interval; 3]; 3],
-    what: &str,
-) -> [[Rational; 3]; 3] {
-    let exact = exact_inverse(q);
-    for i in 0..3 {
-        for j in 0..3 {
-            let (lo, hi) = (
-                Rational::from_f64(qi[i][j].inf()).unwrap(),
-                Rational::from_f64(qi[i][j].sup()).unwrap(),
-            );
-            assert!(
-                lo <= exact[i][j] && exact[i][j] <= hi,
-                "{what}, ({i},{j}): {} ∉ {:?}",
-                exact[i][j].to_f64(),
-                qi[i][j]
-            );
-        }
-    }
-    exact
+/// x′ = y, y′ = −x: the flow is the rotation by −t.
+fn rotation_tape() -> Tape<Interval, 2> {
+    Tape::<Interval, 2>::record(|v| vec![v[1].clone(), -v[0].clone()])
 }
 
 #[test]
-fn q_inverse_encloses_the_exact_inverse() {
-    // Q from rotations in doubles is orthogonal only up to rounding: Q⁻¹ ≠ Qᵀ, and the
-    // enclosure of Q⁻¹ must hold the exact inverse (the Neumann-series error term)
-    let mut strict = 0;
-    for k in 1..200 {
-        let (a, b) = (0.037 * k as f64, 0.011 * k as f64 + 0.3);
-        let (sa, ca, sb, cb) = (a.sin(), a.cos(), b.sin(), b.cos());
-        // R_z(a)·R_x(b)
-        let q = [
-            [ca, -sa * cb, sa * sb],
-            [sa, ca * cb, -ca * sb],
-            [0.0, sb, cb],
-        ];
-        let qi = inverse_enclosure(&q).expect("near-orthogonal");
-        let exact = inverse_holds_exact(&q, &qi, &format!("k = {k}"));
-        for i in 0..3 {
-            for j in 0..3 {
-                assert!(qi[i][j].wid() < 1e-14);
-                if exact[i][j] != Rational::from_f64(q[j][i]).unwrap() {
-                    strict += 1;
-                }
-            }
-        }
+fn a_rotating_box_is_carried_as_an_affine_set() {
+    // a box of radius r around (1, 0) turned by t = 10: every corner's exact image (MPFR cos/sin
+    // at 256 bits) must be in the enclosure, and the enclosure must be the rotated box's hull
+    // within 1 % (the linearized optimum: the set is carried by the steps' Jacobians, not
+    // re-wrapped as a box)
+    let w = Window::of_tape(rotation_tape());
+    let (t1, r) = (10.0, 1e-6);
+    let x0 = [iv(1.0 - r, 1.0 + r), iv(-r, r)];
+    let out = w.enclose(x0, 0.0, t1, &TaylorOptions::default()).unwrap();
+    let t = Float::with_val(PREC, t1);
+    let (c, s) = (t.clone().cos(), t.sin());
+    for (a, b) in [
+        (1.0 - r, -r),
+        (1.0 - r, r),
+        (1.0 + r, -r),
+        (1.0 + r, r),
+        (1.0, 0.0),
+    ] {
+        let (a, b) = (Float::with_val(PREC, a), Float::with_val(PREC, b));
+        let x = Float::with_val(PREC, &a * &c) + Float::with_val(PREC, &b * &s);
+        let y = Float::with_val(PREC, &b * &c) - Float::with_val(PREC, &a * &s);
+        assert!(encloses(out.x1[0], &x), "{x} ∉ {:?}", out.x1[0]);
+        assert!(encloses(out.x1[1], &y), "{y} ∉ {:?}", out.x1[1]);
     }
-    // the transpose alone is not the inverse for most entries: the test has teeth
-    assert!(strict > 1000, "only {strict} entries where Q⁻¹ ≠ Qᵀ");
-    // far from orthogonal (‖I − QᵀQ‖ up to 0.49), where the Neumann bound e/(1 − e)·‖R‖ is
-    // nearly tight: diagonal Q, Q⁻¹ − Qᵀ = diag(1/q − q)
-    let mut far = 0;
-    for a in [0.72, 0.75, 0.8, 0.9, 0.99] {
-        for b in [1.01, 1.1, 1.15, 1.2] {
-            let q = [[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, 1.0]];
-            let Some(qi) = inverse_enclosure(&q) else {
-                continue;
-            };
-            far += 1;
-            inverse_holds_exact(&q, &qi, &format!("diag({a}, {b}, 1)"));
-        }
+    // the rotated box's hull: 2r(|cos t| + |sin t|) in each component
+    let hull = 2.0 * r * (t1.cos().abs() + t1.sin().abs());
+    for x in out.x1 {
+        assert!(x.wid() < 1.01 * hull, "{} vs the optimum {hull}", x.wid());
     }
-    assert!(far >= 15, "{far}");
-}
-
-#[test]
-fn q_inverse_of_scaled_rotations_encloses_the_exact_inverse() {
-    // Q = s·O (O a rotation in doubles, s ≠ 1): R = Qᵀ, E = I − RQ ≈ (1 − s²)I, and
-    // Q⁻¹ − R ≈ (1/s − s)Oᵀ. Where ‖R‖_∞ = s‖Oᵀ‖_∞ > 1 (up to s√3) the factor ‖R‖ of the
-    // error term e/(1 − e)·‖R‖ matters: e/(1 − e)/‖R‖ (`* → /`) excludes the exact inverse
-    // for most of these matrices, which diagonal Q (‖R‖ ≤ 1.2) and rotations (e ~ 1e-16)
-    // cannot show.
-    let mut checked = 0;
-    let mut tightest = 0.0f64;
-    for k in 1..200 {
-        let (a, b) = (0.037 * k as f64, 0.011 * k as f64 + 0.3);
-        let (sa, ca, sb, cb) = (a.sin(), a.cos(), b.sin(), b.cos());
-        let o = [
-            [ca, -sa * cb, sa * sb],
-            [sa, ca * cb, -ca * sb],
-            [0.0, sb, cb],
-        ];
-        for s in [0.9, 0.95, 1.05, 1.1] {
-            let q = o.map(|row| row.map(|x| s * x));
-            let qi = inverse_enclosure(&q).expect("e < 0.5");
-            let exact = inverse_holds_exact(&q, &qi, &format!("k = {k}, s = {s}"));
-            checked += 1;
-            // how much of the error term the exact inverse uses (teeth: a bound several
-            // times smaller would fail above)
-            for i in 0..3 {
-                for j in 0..3 {
-                    let off = (exact[i][j].clone() - Rational::from_f64(q[j][i]).unwrap()).abs();
-                    let rad = Rational::from_f64(qi[i][j].rad()).unwrap();
-                    tightest = tightest.max((off / rad).to_f64());
-                }
-            }
-        }
-    }
-    assert_eq!(checked, 199 * 4);
-    assert!(
-        tightest > 0.4,
-        "the exact inverse uses only {tightest} of the error term"
-    );
 }
 
 #[test]

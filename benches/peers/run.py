@@ -222,7 +222,7 @@ def report(a, configs, results, starts, loads, kv_note, have_kv):
         "there: kv gets the field with the signs substituted, benches/peers/kv_window.cc), from the f64 state at "
         f"{T0} (DOP853, rtol 1e-13) as exact doubles — a thin start, and a box of radius 1e-8 around it. bwcl: "
         f"`Window::enclose` (src/engines/taylor/window.rs; order {ORDER}, the engine's defaults: mean-value form, "
-        f"QR); kv: odelong_maffine, odelong_maffine2 and odelong_qr_lohner at order {ORDER} (kv's defaults "
+        f"the set carried as an affine set); kv: odelong_maffine, odelong_maffine2 and odelong_qr_lohner at order {ORDER} (kv's defaults "
         "otherwise). One thread each; a process repeats its integration for at least "
         f"{a.min_ms:g} ms, time = wall time per integration, median over the rounds (CPU time beside it); "
         "bwcl/kv = the ratio of the two within each round, median (min–max). Widths: of each component at "

@@ -214,7 +214,8 @@ impl Dot<Interval> for IntervalDot {
 }
 
 /// Σ aⱼ·bⱼ over inari intervals by one [`IntervalDot`] (the small matrix–vector products of a
-/// step: Jacobians, Lohner's B = J·A, offsets A·r). A constant term c enters as (c, 1).
+/// step: Jacobians, the affine set's J·g_j and offsets Σ g_j·u_j). A constant term c could enter
+/// as (c, 1), but its rounding bound then scales with |c|: a large c is added after the sum.
 #[inline]
 pub fn interval_dot(terms: impl IntoIterator<Item = (Interval, Interval)>) -> Interval {
     let mut d = IntervalDot::empty();

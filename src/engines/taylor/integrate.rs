@@ -7,9 +7,9 @@
 //! [`Run::low_order_step`] (across the surface), then [`Run::scan`] (the new piece scanned for
 //! the event, a pending stretch decided) and [`Run::advance`].
 
+use super::affine::AffineSet;
 use super::event::{self, SeparationEvent};
 use super::flow::{self, Flow, Piece};
-use super::lohner::Parallelepiped;
 use super::options::WIDE_SET;
 use super::options::{
     CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, TaylorOptions, UNDECIDABLE,
@@ -82,7 +82,7 @@ struct Run<'a, I: Enclosure, const N: usize> {
     beyond_f64: bool,
     start_width: f64,
     x: [I; N],
-    rep: Option<Parallelepiped<N, I>>,
+    rep: Option<AffineSet<N, I>>,
     t: f64,
     flow: Flow<N, I>,
     h_low: f64,
@@ -139,7 +139,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
             ws: step::Workspaces::default(),
             ev_ws: Workspace::default(),
             // the singular step across branch points (f64 intervals, point sets: a wide set
-            // keeps its parallelepiped through the Taylor steps), set up the first time it is
+            // keeps its affine set through the Taylor steps), set up the first time it is
             // tried: its basis of exponents is costly for the variational tapes of wide sets,
             // which never use it (measured: 55 % of a band piece's time, SHC DSS
             // v0 ∈ [1, 1.0024], 1941 exponents)
@@ -149,7 +149,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
             beyond_f64: I::epsilon() < f64::EPSILON,
             start_width: (START_WIDTH * ulps).max(opts.cross_tol.min(START_WIDTH)),
             x: x0,
-            // the set at t as a parallelepiped after a Taylor step with QR (Lohner), else None
+            // the set at t as an affine set after a Taylor step (`opts.qr`), else None
             // (a box)
             rep: None,
             t: 0.0,
@@ -387,7 +387,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
                     step::KinkCut::Whole => break Some(o),
                     step::KinkCut::Before(tc) if tc - t >= opts.min_taylor_step => {
                         // the step again, ending at the cut: its end set stays a
-                        // parallelepiped (a truncated piece gives a box)
+                        // affine set (a truncated piece gives a box)
                         if o.rep.is_some()
                             && w > WIDE_SET
                             && let Ok(o2) = self.try_taylor(here, tc - t, true)
@@ -420,7 +420,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
         }
     }
 
-    /// [`step::taylor_step`] from the set, at most `h` long; from its parallelepiped, if it has
+    /// [`step::taylor_step`] from the set, at most `h` long; from its affine set, if it has
     /// one, with `with_rep`.
     fn try_taylor(
         &mut self,
@@ -482,7 +482,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
                 });
             }
             if let Some(mut o) = step::low_order_step(tape, t, &self.x, h) {
-                // the parallelepiped moved by τ·f(Y) (see Parallelepiped::shifted)
+                // the affine set moved by τ·f(Y) (see AffineSet::shifted)
                 if let (Some(p), true, Piece::LowOrder { t0, t1, slope, .. }) =
                     (&self.rep, opts.qr && w > WIDE_SET, &o.piece)
                 {
@@ -569,9 +569,9 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
         Ok(None)
     }
 
-    /// The set moves to the end t1 of the step just scanned (its box `x1` and parallelepiped
+    /// The set moves to the end t1 of the step just scanned (its box `x1` and affine set
     /// `rep`), the step traced with `BWCL_TRACE`.
-    fn advance(&mut self, t1: f64, x1: [I; N], rep: Option<Parallelepiped<N, I>>) {
+    fn advance(&mut self, t1: f64, x1: [I; N], rep: Option<AffineSet<N, I>>) {
         let t = self.t;
         if self.trace {
             let kind = if matches!(self.flow.pieces.last(), Some(Piece::Taylor { .. })) {
@@ -587,7 +587,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
             );
             let widths: Vec<String> = x1.iter().map(|c| format!("{:.1e}", c.wid_f64())).collect();
             eprintln!(
-                "  widths {} (parallelepiped: {})",
+                "  widths {} (affine set: {})",
                 widths.join(" "),
                 rep.is_some()
             );

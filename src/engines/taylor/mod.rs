@@ -17,16 +17,16 @@
 //!
 //! Layering, each module using only those before it (no cycles): [`op`] (a tape's
 //! operations); [`rec`] and [`linear`] (recording them, fusing them); [`tape`]; [`flow`],
-//! [`newton`], [`lohner`], `options.rs`; [`step`] and [`event`]; [`singular`]; `integrate.rs`;
+//! [`newton`], [`affine`], `options.rs`; [`step`] and [`event`]; [`singular`]; `integrate.rs`;
 //! this file (the entry points).
 
+pub mod affine;
 pub mod event;
 pub mod flow;
 mod integrate;
 pub mod linear;
 #[cfg(test)]
 mod linear_review;
-pub mod lohner;
 pub mod newton;
 pub mod op;
 mod options;

@@ -21,9 +21,9 @@
 //! (Picard–Lindelöf), then Φ(t0 + τ) ∈ X + τ·f(Y) for τ ∈ [0, h] — valid across any
 //! switching surface because f is only evaluated, never expanded.
 
+use super::affine::AffineSet;
 pub use super::flow::taylor_eval;
 use super::flow::{Piece, tau};
-use super::lohner::Parallelepiped;
 use super::newton::{Newton, interval_newton};
 use super::tape::{Rounding, Tape, Workspace};
 use crate::arith::Enclosure;
@@ -122,8 +122,8 @@ pub struct StepOut<const N: usize, I = Interval> {
     pub piece: Piece<N, I>,
     pub x1: [I; N],
     pub apriori: [I; N],
-    /// The set at the step's end as a parallelepiped (Taylor steps with QR), if any.
-    pub rep: Option<Parallelepiped<N, I>>,
+    /// The set at the step's end as an affine set ([`super::affine`]), if any.
+    pub rep: Option<AffineSet<N, I>>,
 }
 
 /// Why a Taylor step was not taken.
@@ -385,16 +385,16 @@ pub fn taylor_step<const N: usize, I: Enclosure>(
     h_max: f64,
     h_min: f64,
     side: &[i8; N],
-    rep: Option<&Parallelepiped<N, I>>,
+    rep: Option<&AffineSet<N, I>>,
 ) -> Result<StepOut<N, I>, TaylorFail> {
     let k = order;
-    // the set at t0 as c + A·r (Lohner); a plain box is c = mid X, A = I. The jets over the box
+    // the set at t0 as c + Σ g_j u_j; a plain box is c = mid X, axis columns. The jets over the box
     // run over the hull of X and c (the mean-value segments from c must lie in it).
     let boxed;
     let rep = match rep {
         Some(r) => r,
         None => {
-            boxed = Parallelepiped::from_box(x);
+            boxed = AffineSet::from_box(x);
             &boxed
         }
     };
@@ -456,21 +456,19 @@ pub fn taylor_step<const N: usize, I: Enclosure>(
             )
         })
     });
-    let base = taylor_eval(&cm, &rem, &tau1);
-    // B = J·A; x(t1) ∈ base + B·r, kept as a parallelepiped (QR) and as a box
-    let b: [[I; N]; N] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            I::dot((0..N).map(|l| (jac[i][l].clone(), I::from_exact_f64(rep.a[l][j]))))
-        })
-    });
-    let next = Parallelepiped::advance(&base, &b, &rep.r);
+    // x(t1) ∈ base + J·(x0 − x̂) for x0 in the set x̂ + Σ g_j u_j: its image, kept as an affine
+    // set and as a box
+    // base = x̂ + s: the displacement s = τ·(Σ_{1≤k<K} x_k τ^(k−1) + τ^(K−1)·x_K(Y)) summed
+    // apart from x̂ (= the coefficient of order 0, a point), so that the set's new symbols are
+    // not rounded at the state's scale (affine::AffineSet::image)
+    let s: [I; N] = {
+        let d = taylor_eval(&cm[1..], &rem, &tau1);
+        std::array::from_fn(|i| d[i].clone() * tau1.clone())
+    };
+    let (next, direct) = rep.image(&jac, &cm[0], &s);
     let next_hull = next.as_ref().map(|p| p.hull());
     let x1: [I; N] = std::array::from_fn(|i| {
-        let acc = I::dot(
-            std::iter::once((base[i].clone(), one.clone()))
-                .chain((0..N).map(|j| (b[i][j].clone(), rep.r[j].clone()))),
-        );
-        let acc = acc.intersection(&ynew[i]);
+        let acc = direct[i].intersection(&ynew[i]);
         match &next_hull {
             Some(h) => acc.intersection(&h[i]),
             None => acc,
@@ -482,10 +480,7 @@ pub fn taylor_step<const N: usize, I: Enclosure>(
         .enumerate()
         .map(|(kk, c)| match dk.get(kk) {
             Some(d) => std::array::from_fn(|i| {
-                I::dot(
-                    std::iter::once((c[i].clone(), one.clone()))
-                        .chain((0..N).map(|j| (d[i][j].clone(), ar[j].clone()))),
-                )
+                c[i].clone() + I::dot((0..N).map(|j| (d[i][j].clone(), ar[j].clone())))
             }),
             None => c.clone(),
         })

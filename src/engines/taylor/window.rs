@@ -18,8 +18,8 @@
 //! ```
 //!
 //! with [`step::taylor_step`] (order K, mean-value form on the kd lowest orders, a high-order
-//! a-priori enclosure) and, with `opts.qr`, the set carried between steps as Lohner's
-//! parallelepiped ([`super::lohner`]); the field is continued across the kinks of |·| from the
+//! a-priori enclosure) and, with `opts.qr`, the set carried between steps as an affine set
+//! ([`super::affine`]); the field is continued across the kinks of |·| from the
 //! side of the start, and [`step::cut_at_kinks`] proves that no kink component reaches 0 on a
 //! step. The last step ends at t1 exactly (a length h with fl(t + h) = t1).
 //!
@@ -28,8 +28,8 @@
 //! its crossing can be neither excluded nor proved), when a branch-point component approaches
 //! 0 so that the steps shrink below `opts.min_taylor_step`, or when a step cannot be taken.
 
+use super::affine::AffineSet;
 use super::flow::Flow;
-use super::lohner::Parallelepiped;
 use super::options::WIDE_SET;
 use super::step::{self, KinkCut, TaylorFail};
 use super::tape::Tape;
@@ -165,7 +165,7 @@ impl<const N: usize, I: Enclosure> Window<N, I> {
         let mut ws = step::Workspaces::<N, I>::default();
         let mut flow = Flow::default();
         let mut x = x0;
-        let mut rep: Option<Parallelepiped<N, I>> = None;
+        let mut rep: Option<AffineSet<N, I>> = None;
         let mut t = t0;
         let mut steps = 0;
         while t < t1 {

@@ -41,8 +41,8 @@
 pub mod puiseux;
 pub mod start;
 
+use super::affine::AffineSet;
 use super::flow::tau;
-use super::lohner::Parallelepiped;
 use super::step::{StepOut, low_order_to};
 use super::tape::Tape;
 use crate::arith::jet::dual::Dual;
@@ -686,12 +686,12 @@ fn exit_estimate<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> Option<f64> {
     (u > 0.0 && u < delta).then_some(u)
 }
 
-/// A step across the zero of component `w` from the set at t0 (the parallelepiped `rep`, or
+/// A step across the zero of component `w` from the set at t0 (the affine set `rep`, or
 /// the box `x0`), or `None` when it cannot be proved (a component other than w reaches a
 /// switching surface, ẇ reaches 0, the expansions do not validate, the exit time is not after
 /// t_c, or the field's Jacobian is unbounded on the way).
 ///
-/// The set is carried by the mean-value form, as a Taylor step carries it (Lohner): with c the
+/// The set is carried by the mean-value form, as a Taylor step carries it: with c the
 /// set's centre, φ(x) ∈ φ(c) + J·(x − c), where φ(c) is the point's flow by the expansions
 /// ([`cross_point`]) and J encloses the flow's Jacobian over the set from the variational
 /// equation Φ′ = Df(x(t))Φ, Φ(t₀) = I, on the a-priori box Y ⊇ x(t) of a low-order step:
@@ -706,13 +706,13 @@ pub fn crossing_step<const N: usize, I: Enclosure>(
     dual: &Tape<Dual<I, N>, N>,
     t0: f64,
     x0: &[I; N],
-    rep: Option<&Parallelepiped<N, I>>,
+    rep: Option<&AffineSet<N, I>>,
     w: usize,
     opts: &SingularOptions,
 ) -> Option<StepOut<N, I>> {
     let clock = std::time::Instant::now();
     let trace = trace_sing();
-    let p = rep.cloned().unwrap_or_else(|| Parallelepiped::from_box(x0));
+    let p = rep.cloned().unwrap_or_else(|| AffineSet::from_box(x0));
     let c: [I; N] = p.c.clone();
     let cp = cross_point(st, tape, t0, &c, w, opts, None);
     if trace {
@@ -758,22 +758,15 @@ pub fn crossing_step<const N: usize, I: Enclosure>(
             e + tau1.clone() * s
         })
     });
-    // B = J·A
-    let b: [[I; N]; N] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| I::dot((0..N).map(|l| (jac[i][l].clone(), point(p.a[l][j])))))
-    });
-    let rep1 = Parallelepiped::advance(&z, &b, &p.r);
+    // the image of the set x̂ + Σ g_j u_j: z + J·(x0 − x̂)
+    let zero: [I; N] = std::array::from_fn(|_| I::zero());
+    let (rep1, direct) = p.image(&jac, &zero, &z);
     let x1: [I; N] = match &rep1 {
         Some(r) => {
             let h = r.hull();
-            std::array::from_fn(|i| h[i].intersection(&lo.x1[i]))
+            std::array::from_fn(|i| h[i].intersection(&direct[i]).intersection(&lo.x1[i]))
         }
-        None => {
-            let off = std::array::from_fn::<I, N, _>(|i| {
-                I::dot((0..N).map(|j| (b[i][j].clone(), p.r[j].clone())))
-            });
-            std::array::from_fn(|i| (z[i].clone() + off[i].clone()).intersection(&lo.x1[i]))
-        }
+        None => std::array::from_fn(|i| direct[i].intersection(&lo.x1[i])),
     };
     if x1.iter().any(|c| c.is_empty()) {
         return None;
@@ -852,7 +845,7 @@ impl<const N: usize, I: Enclosure> Singular<N, I> {
         &mut self,
         t0: f64,
         x0: &[I; N],
-        rep: Option<&Parallelepiped<N, I>>,
+        rep: Option<&AffineSet<N, I>>,
         w: usize,
         h: f64,
     ) -> Option<StepOut<N, I>> {
