@@ -22,8 +22,10 @@
 //! re-wrapped afterwards, and a small start box is carried by the product of the steps'
 //! Jacobians, which reaches the linearized flow's optimum. Lohner's QR method, which this
 //! replaces, re-expressed every step's error box in a rotated frame (Q⁻¹E, then the hull
-//! through Q): measured on the kv windows (benches/RESULTS.md), 1.3–2× wider than this from a
-//! thin start and 1.08–1.35× the linearized optimum from a box of radius 1e-8.
+//! through Q): measured on the kv windows (benches/RESULTS.md, "The set carried as an affine
+//! set"), 1.6–2× wider than this set alone from a thin start (3.2–5.5× wider than this set with
+//! the end state summed as x̂ + s, [`super::step::taylor_step`]) and 1.08–1.35× the linearized
+//! optimum from a box of radius 1e-8, where this set reaches it.
 //!
 //! At most [`SYMBOLS`]·N symbols are kept: beyond, the smallest (by Σ_i |g_j,i|·mag u_j) are
 //! merged into N fresh axis symbols, u_i = Σ_j g_j,i·u_j over the merged j — the only place

@@ -456,11 +456,10 @@ pub fn taylor_step<const N: usize, I: Enclosure>(
             )
         })
     });
-    // x(t1) ∈ base + J·(x0 − x̂) for x0 in the set x̂ + Σ g_j u_j: its image, kept as an affine
-    // set and as a box
-    // base = x̂ + s: the displacement s = τ·(Σ_{1≤k<K} x_k τ^(k−1) + τ^(K−1)·x_K(Y)) summed
-    // apart from x̂ (= the coefficient of order 0, a point), so that the set's new symbols are
-    // not rounded at the state's scale (affine::AffineSet::image)
+    // x(t1) ∈ x̂ + s + J·(x0 − x̂) for x0 in the set x̂ + Σ g_j u_j: its image, kept as an affine
+    // set and as a box. The displacement s = τ·(Σ_{1≤k<K} x_k τ^(k−1) + τ^(K−1)·x_K(Y)) is summed
+    // apart from x̂ (the coefficient of order 0, a point), so that the set's new symbols are not
+    // rounded at the state's scale (affine::AffineSet::image)
     let s: [I; N] = {
         let d = taylor_eval(&cm[1..], &rem, &tau1);
         std::array::from_fn(|i| d[i].clone() * tau1.clone())
