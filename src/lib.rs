@@ -19,6 +19,9 @@
 extern crate self as bwcl;
 
 pub mod arith;
+// Left out of the unit tests' build: the CLI has no unit tests, no other module uses it, and
+// tests/ runs it as a program (a quarter of that build's CPU time; issue #34, the test command).
+#[cfg(not(test))]
 pub mod cli;
 pub mod engines;
 pub mod fit;
