@@ -5,8 +5,7 @@
 # guards' check, the Python package's tests and its documentation with the notebooks executed.
 #
 # On 2 CPUs the order is chosen so that no core idles (issue #34, the test command's time):
-# the Python venv and wheels are downloaded while cargo compiles, and the unit tests run as soon
-# as they are linked, beside the end of the compile; then the other Rust test programs
+# the Python venv and wheels are downloaded while cargo compiles; then the Rust test programs
 # run (started directly, not by `cargo test`, which would hold cargo's lock on the target
 # directory) while the extension is built, and beside the Python tests and the documentation
 # (each of those leaves a core mostly idle on its own); the doc-tests last. Each part's output
@@ -31,46 +30,8 @@ show() { # name: print a part's log, framed
     >"$LOGS/python-setup.log" 2>&1 &
 setup_pid=$!
 
-# test_programs [lib]: the test programs built so far (the unit tests' alone with `lib`), from
-# cargo's messages in $LOGS/build.json
-test_programs() {
-    python3 - "$LOGS/build.json" "${1:-all}" <<'PY'
-import json, sys
-for line in open(sys.argv[1]):
-    try:
-        m = json.loads(line)
-    except ValueError:
-        continue
-    if m.get("reason") == "compiler-artifact" and m.get("profile", {}).get("test") \
-            and m.get("executable") \
-            and (sys.argv[2] != "lib" or m.get("target", {}).get("kind") == ["lib"]):
-        print(m["executable"])
-PY
-}
-# The build; the unit tests start as soon as their program is linked, while the library, the
-# suite and the programs still compile: the end of the compile leaves a CPU partly idle (a
-# crate's front end runs on one thread), which they fill (issue #34).
 # shellcheck disable=SC2086 # FLAGS is empty or a few flags
-cargo test --release $FLAGS --no-run --message-format=json-render-diagnostics \
-    >"$LOGS/build.json" &
-build_pid=$!
-unit_pid=""
-UNIT=""
-while kill -0 "$build_pid" 2>/dev/null; do
-    if [ -z "$unit_pid" ] && grep -q '"test":true' "$LOGS/build.json"; then
-        UNIT=$(test_programs lib)
-        if [ -n "$UNIT" ]; then
-            { echo "     Running $UNIT"; "$UNIT"; } >"$LOGS/unit-tests.log" 2>&1 &
-            unit_pid=$!
-            stamp "unit tests started"
-        fi
-    fi
-    sleep 2
-done
-if ! wait "$build_pid"; then
-    echo "test.sh: the build failed" >&2
-    exit 1
-fi
+cargo test --release $FLAGS --no-run
 stamp "compiled"
 if ! wait "$setup_pid"; then
     show python-setup
@@ -82,8 +43,19 @@ stamp "Python venv ready"
 # The programs as `cargo test` built them: `cargo run` would build the library once more,
 # with the features the dev-dependencies do not unify (about 2 min on 2 cores).
 BIN="${CARGO_TARGET_DIR:-target}/release"
-# the test programs `cargo test` runs (the suite; the unit tests if they did not start above)
-TESTS=$(test_programs | grep -vxF "${UNIT:-/}" || true)
+# the test programs `cargo test` runs (the unit tests, the suite), from cargo's messages (the
+# build above is done: this only lists it)
+# shellcheck disable=SC2086
+TESTS=$(cargo test --release $FLAGS --no-run --message-format=json 2>/dev/null | python3 -c '
+import json, sys
+for line in sys.stdin:
+    try:
+        m = json.loads(line)
+    except ValueError:
+        continue
+    if m.get("reason") == "compiler-artifact" and m.get("profile", {}).get("test") \
+            and m.get("executable"):
+        print(m["executable"])')
 [ -n "$TESTS" ] || { echo "test.sh: no test program found" >&2; exit 1; }
 # the Rust tests (from the repository root, as `cargo test` runs them), one program after the
 # other, each printing its name and result
@@ -108,10 +80,6 @@ if wait "$python_pid"; then py=ok; else py=FAILED; status=1; fi
 show python-tests
 stamp "Python tests and documentation: $py"
 if wait "$rust_pid"; then rust=ok; else rust=FAILED; status=1; fi
-if [ -n "$unit_pid" ]; then
-    if ! wait "$unit_pid"; then rust=FAILED; status=1; fi
-    show unit-tests
-fi
 show rust-tests
 stamp "Rust tests: $rust"
 [ "$status" = 0 ] || exit "$status"
