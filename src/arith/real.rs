@@ -256,7 +256,7 @@ impl<R: Real> Dot<R> for PlainDot<R> {
 }
 
 /// Refuses what is not a plain decimal literal (digits, '.', signs, an exponent), before an
-/// interval type encloses it: "[1,2]", "inf" or "" are not parameters. `t` is trimmed.
+/// interval type encloses it: "\[1,2\]", "inf" or "" are not parameters. `t` is trimmed.
 pub fn check_plain_decimal(t: &str) -> Result<(), String> {
     let ok = !t.is_empty()
         && t.chars()

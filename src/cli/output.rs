@@ -119,10 +119,10 @@ pub struct FloatRow {
     pub ts: Option<f64>,
     /// 0 without separation; None on failure.
     pub e: Option<f64>,
-    /// Only for --physical: T_s·T_c [s] (null without separation).
+    /// Only for --physical: T_s·T_c \[s\] (null without separation).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ts_seconds: Option<Option<f64>>,
-    /// Only for --physical: the time scale T_c [s].
+    /// Only for --physical: the time scale T_c \[s\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub t_c: Option<f64>,
     pub nfev: usize,
@@ -186,7 +186,7 @@ pub struct RigorousRow {
     pub e: Option<[f64; 2]>,
     #[serde(serialize_with = "json_width")]
     pub width_e: Option<f64>,
-    /// Only for --physical: an enclosure of T_s·T_c [s].
+    /// Only for --physical: an enclosure of T_s·T_c \[s\].
     #[serde(
         skip_serializing_if = "Option::is_none",
         serialize_with = "json_opt_pair"

@@ -30,7 +30,7 @@ fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
     texts(input::cases::<Interval>(&a.params)?)
 }
 
-/// [`cases`] of cases already parsed (the Python bindings parse their speeds in batches): (v0
+/// `cases` of cases already parsed (the Python bindings parse their speeds in batches): (v0
 /// as written, or "-" for --nd; the parameters as written).
 pub fn texts(checked: Vec<input::Case<Interval>>) -> Result<Vec<(String, ParamText)>, CliError> {
     if checked

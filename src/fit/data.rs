@@ -16,13 +16,13 @@ use std::fmt;
 use std::io::Read;
 use std::path::Path;
 
-/// Largest data file read [bytes] (4 MiB: some 10⁵ rows of two numbers).
+/// Largest data file read \[bytes\] (4 MiB: some 10⁵ rows of two numbers).
 pub const MAX_FILE_BYTES: u64 = 4 << 20;
-/// Longest line [characters].
+/// Longest line \[characters\].
 pub const MAX_LINE_CHARS: usize = 1000;
 /// Most data rows (the cost J evaluates one CoR per row).
 pub const MAX_ROWS: usize = 10_000;
-/// Longest echo of a user's text in a message [characters], the ellipsis included.
+/// Longest echo of a user's text in a message \[characters\], the ellipsis included.
 pub const ECHO_CHARS: usize = 40;
 
 /// A user's text as messages show it: control characters escaped (`\n`, `\t`, `\0`,

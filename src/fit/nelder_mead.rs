@@ -1,5 +1,5 @@
 //! Seeded multi-start Nelder–Mead minimization of J over 𝓟 (argmin's `NelderMead` on the
-//! coordinates of [`Reparam`]).
+//! coordinates of [`Reparam`](super::reparam::Reparam)).
 //!
 //! Every start is a point drawn from a ChaCha8 stream seeded by [`FitOptions::seed`] (all
 //! points are drawn before any run, so the result does not depend on the thread schedule),

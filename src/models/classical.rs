@@ -97,7 +97,7 @@ pub enum LawSource {
     Nd,
     /// The family over the impact speed, at v0 = 1 m/s.
     Base,
-    /// SI units: m [kg], k [N/m^n], χ [N s/m^(n+1)], c [N s/m].
+    /// SI units: m \[kg\], k \[N/m^n\], χ \[N s/m^(n+1)\], c \[N s/m\].
     Physical,
 }
 

@@ -3,7 +3,7 @@
 //!
 //! The law's e solves H(σ, e) = 0 ([`crate::models::hunt_crossley`]): for each σ > 0 a unique
 //! root in (0, min(1, 1/σ)), where H(σ, ·) increases. So a point a with H(σ, a) < 0 and a point
-//! b with H(σ, b) > 0, both proved over every σ of an interval [σ], bracket e(σ) for all of
+//! b with H(σ, b) > 0, both proved over every σ of an interval \[σ\], bracket e(σ) for all of
 //! them. [`cor_of_sigma`] bisects such a bracket with H evaluated in 128-bit MPFR interval
 //! arithmetic (directed rounding; no cancellation trouble in G(u) ≈ u²/2 for small u) until
 //! the sign of H at the midpoint is no longer decided, then tightens each end on its own.

@@ -21,7 +21,7 @@
 //! (∂/∂u along the flow at fixed T, i.e. ∇F·S + ∂_u F; the implicit function theorem on
 //! F(x(T, u), u) = 0), enclosed over the whole set: every state at T_s(u), u ∈ U, lies in the
 //! event's state enclosure (each factor tightened by its time-centred form about the middle of
-//! [T_s]). The mean-value form T_s(u) ∈ T_s(û) + Σ_j [∂T_s/∂u_j](U_j − û_j) (û a short point
+//! \[T_s\]). The mean-value form T_s(u) ∈ T_s(û) + Σ_j \[∂T_s/∂u_j\](U_j − û_j) (û a short point
 //! near the centre, T_s(û) from a point run; likewise e) is then intersected with the hulls of
 //! the runs. Where a derivative cannot be carried, the hull of the system with the parameters
 //! as components alone is the result.
