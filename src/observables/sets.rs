@@ -12,7 +12,8 @@
 //! equation S = ∂x/∂u_j, Ṡ = D_x f·S + ∂_{u_j} f (the field differentiated on duals), from
 //! S(0) = 0 — one derivative per run: with all of ∂x/∂u at once, Lohner's basis (the engine's set
 //! before the affine set; not re-measured since) mixed the large S block into the directions of
-//! x and the set wrapped (measured: "the enclosure grew too wide" with all six base parameters). At the separation (F = 0 crossed with V > 0):
+//! x and the set wrapped (measured: "the enclosure grew too wide" with all six base
+//! parameters). At the separation (F = 0 crossed with V > 0):
 //!
 //! ```text
 //! dT_s/du = −(∂F/∂u)/(dF/dT),     de/du = ∂V/∂u + (dV/dT)·dT_s/du

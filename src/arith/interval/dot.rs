@@ -309,10 +309,7 @@ mod tests {
     struct Gen(u64);
     impl Gen {
         fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
+            crate::arith::interval::xorshift_step(&mut self.0)
         }
         fn float(&mut self, binades: i32) -> f64 {
             let r = self.next();

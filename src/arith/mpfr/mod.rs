@@ -834,10 +834,7 @@ mod tests {
     struct Rng(u64);
     impl Rng {
         fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
+            crate::arith::interval::xorshift_step(&mut self.0)
         }
         /// In [0, n).
         fn below(&mut self, n: u64) -> u64 {

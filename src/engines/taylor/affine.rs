@@ -192,21 +192,17 @@ impl<const N: usize, I: Enclosure> AffineSet<N, I> {
                     .map(|j| (self.g[j][i].clone(), self.u[j].clone())),
             )
         });
-        let mut j = 0;
-        self.g.retain(|_| {
-            j += 1;
-            !merged[j - 1]
-        });
-        let mut j = 0;
-        self.u.retain(|_| {
-            j += 1;
-            !merged[j - 1]
-        });
+        (self.g, self.u) = std::mem::take(&mut self.g)
+            .into_iter()
+            .zip(std::mem::take(&mut self.u))
+            .zip(merged)
+            .filter_map(|(gu, m)| (!m).then_some(gu))
+            .unzip();
         self.push_box(&e);
     }
 
     fn finite(&self) -> bool {
-        let ok = |x: &I| x.lo().is_finite() && x.hi().is_finite();
+        let ok = |x: &I| x.is_finite();
         self.c.iter().all(ok) && self.u.iter().all(ok) && self.g.iter().flatten().all(ok)
     }
 }
@@ -238,10 +234,7 @@ mod tests {
     struct Gen(u64);
     impl Gen {
         fn unit(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+            (crate::arith::interval::xorshift_step(&mut self.0) >> 11) as f64 / (1u64 << 53) as f64
         }
         /// An end (0 or 1) half the time, else inside.
         fn frac(&mut self) -> f64 {
