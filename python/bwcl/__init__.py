@@ -48,6 +48,7 @@ import json
 import numbers
 import os
 import sys
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple, Optional, Sequence, Tuple, Union
 
@@ -1348,7 +1349,8 @@ def profile(
     others re-optimized, as the CLI's ``profile``: a dict with the best fit (P_star, base, J,
     s2, threshold) and ``profiles``, one per parameter: name, best_value, J_min, points (value,
     J, delta_chi2, p_star, converged) and the 95 % likelihood-ratio interval ``lo``/``hi``
-    ({"value", "open"}: open where it reaches the grid's end)."""
+    ({"value", "open"}: open where it reaches the grid's end). A ``RuntimeWarning`` names the
+    grid points whose re-optimization used its whole budget (``converged`` false)."""
     data_arg, a, b = _data_args(data, v0, e)
     argv = ["profile"] + _source(model, None, None, None, False) + [data_arg]
     argv += [f"--points={_num(points, 'points')}", f"--starts={_num(starts, 'starts')}",
@@ -1356,7 +1358,17 @@ def profile(
     if param is not None:
         argv.append(f"--param={param}")
     argv += _search(fix, bounds, error, tc_error, use_tc)
-    return json.loads(_bwcl.profile(argv, v0=a, e=b, threads=_threads(threads)))
+    out = json.loads(_bwcl.profile(argv, v0=a, e=b, threads=_threads(threads)))
+    for prof in out.get("profiles", []):
+        budget = sum(1 for q in prof["points"] if not q.get("converged", True))
+        if budget:
+            warnings.warn(
+                f"bwcl.profile: {budget} of {len(prof['points'])} grid points of "
+                f"{prof['name']} used their whole budget (max_iter={max_iter}): their J is only "
+                "an upper bound of the profile there, and the interval may be off; raise "
+                "max_iter, or fix the parameters the data do not determine",
+                RuntimeWarning, stacklevel=2)
+    return out
 
 
 from . import _frames, _progress, _sets, plot  # noqa: E402

@@ -139,7 +139,10 @@ def residuals(result: Any, axes: Any = None) -> Any:
 
 def profiles(report: dict, axes: Any = None) -> Any:
     """The profiles of :func:`~bwcl.profile`: Δχ² against each parameter with the threshold
-    of its 95 % likelihood-ratio interval."""
+    of its 95 % likelihood-ratio interval (dashed), the interval shaded and the best fit's value
+    a vertical line, as the CLI's ``profile --plot``. A grid point whose re-optimization used
+    its whole budget (``converged`` false) is drawn hollow: its J is only an upper bound of the
+    profile there."""
     profs = report.get("profiles", [])
     if not profs:
         raise ValueError("profiles: the report holds no profiles")
@@ -151,9 +154,24 @@ def profiles(report: dict, axes: Any = None) -> Any:
     threshold = report.get("threshold")
     for ax, prof in zip(flat, profs):
         pts = [p for p in prof["points"] if p.get("delta_chi2") is not None]
-        ax.plot([p["value"] for p in pts], [p["delta_chi2"] for p in pts], "o-", ms=3)
+        x = [p["value"] for p in pts]
+        y = [p["delta_chi2"] for p in pts]
+        ax.plot(x, y, "-", color="C0")
+        done = [p.get("converged", True) for p in pts]
+        for ok, label in ((True, "converged"), (False, "budget used (J an upper bound)")):
+            sel = [k for k, d in enumerate(done) if d == ok]
+            if sel:
+                ax.plot([x[k] for k in sel], [y[k] for k in sel], "o", ms=4, color="C0",
+                        markerfacecolor="C0" if ok else "white", label=label)
+        lo, hi = prof.get("lo"), prof.get("hi")
+        if lo is not None and hi is not None:
+            ax.axvspan(lo["value"], hi["value"], color="C0", alpha=0.12, lw=0)
+        if prof.get("best_value") is not None:
+            ax.axvline(prof["best_value"], color="0.5", lw=0.8)
         if threshold is not None:
             ax.axhline(threshold, color="C3", lw=0.8, ls="--")
+        if not all(done):
+            ax.legend(loc="best", fontsize="small")
         ax.set_xlabel(prof["name"])
         ax.set_ylabel("Δχ²")
     for ax in flat[len(profs):]:

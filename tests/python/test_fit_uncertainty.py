@@ -1,6 +1,8 @@
 """Issue #31 from Python: bwcl.fit's minima and uncertainty fields and bwcl.profile equal the
 CLI's JSON; bad options raise ValueError with the CLI's line."""
 
+import warnings
+
 import pytest
 
 import bwcl
@@ -36,6 +38,19 @@ def test_profile_equals_cli(cli_json):
     ]
     assert p["profiles"][0]["name"] == "kappa" and len(p["profiles"]) == 1
     assert p["threshold"] == pytest.approx(3.841458820694124)
+
+
+def test_a_profile_that_used_its_budget_says_so():
+    """Grid points whose re-optimization stopped at max_iter are named in a RuntimeWarning (the
+    notebook once showed such a profile as an interval); a profile with budget enough is
+    silent."""
+    with pytest.warns(RuntimeWarning, match=r"of kappa used their whole budget \(max_iter=2\)"):
+        p = bwcl.profile("shc", DATA, param="kappa", points=3, starts=1, max_iter=2, fix=FIX)
+    assert not all(q["converged"] for q in p["profiles"][0]["points"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        q = bwcl.profile("shc", DATA, param="kappa", points=3, starts=1, max_iter=300, fix=FIX)
+    assert all(x["converged"] for x in q["profiles"][0]["points"])
 
 
 def test_bad_search_options_raise():

@@ -150,6 +150,29 @@ def test_plots(tmp_path):
     plt.close("all")
 
 
+def test_profile_plot_marks_the_points_that_used_their_budget():
+    """A profile point whose re-optimization used its whole budget is drawn hollow (its J only
+    bounds the profile from above), as the CLI's SVG does; the interval is shaded and the best
+    value marked."""
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    pts = [{"value": v, "J": 0.02, "delta_chi2": d, "converged": c}
+           for v, d, c in [(0.5, 6.0, True), (0.6, 0.0, True), (0.7, 2.0, False), (0.8, 9.0, True)]]
+    report = {"threshold": 3.84, "profiles": [{
+        "name": "kappa", "best_value": 0.6, "points": pts,
+        "lo": {"value": 0.52, "open": False}, "hi": {"value": 0.75, "open": False}}]}
+    (ax,) = bwcl.plot.profiles(report).reshape(-1)
+    marks = {ln.get_label(): ln for ln in ax.lines if ln.get_marker() == "o"}
+    hollow = marks["budget used (J an upper bound)"]
+    assert list(hollow.get_xdata()) == [0.7]
+    assert matplotlib.colors.to_rgba(hollow.get_markerfacecolor()) == (1.0, 1.0, 1.0, 1.0)
+    assert list(marks["converged"].get_xdata()) == [0.5, 0.6, 0.8]
+    assert len(ax.patches) == 1  # the interval
+    plt.close("all")
+
+
 def _bounds_in(text):
     import re
 
