@@ -75,9 +75,9 @@ def test_no_separation_is_proved_and_not_proved_is_raised():
     assert np.isnan(r.e).all() and r.e_text == (None, None)
     # ... and not raised as a failure
     bwcl.cor_rigorous("shc", base=DSS, v0=[1], horizon=1.0, raise_on_failure=True)
-    # the Hunt–Crossley limit at σ = 30 without the precision fallback is not proved, with
+    # the Hunt–Crossley limit at σ = 24 without the precision fallback is not proved, with
     # its reason, and raised on request
-    nd = ["1e-300", 0, 0.5, 30, 1.5, 1.5]
+    nd = ["1e-300", 0, 0.5, 24, 1.5, 1.5]
     q = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=0)
     assert q.status == ("not proved",) and "undecidable" in q.reason[0]
     with pytest.raises(bwcl.NotProvedError) as ex:
@@ -90,17 +90,17 @@ def test_no_separation_is_proved_and_not_proved_is_raised():
 
 
 def test_the_precision_that_decided_is_reported():
-    """The Hunt–Crossley limit at σ = 30 is undecidable with f64 intervals and proved by the
+    """The Hunt–Crossley limit at σ = 24 is undecidable with f64 intervals and proved by the
     precision fallback at 128 bits (tests/fallback.rs checks its e against the closed form):
     ``bits`` names the precision and ``fallback`` the runs; with the fallback off it is not
     proved; an ordinary case is decided at 53 bits with no fallback run."""
-    nd = ["1e-300", 0, 0.5, 30, 1.5, 1.5]
+    nd = ["1e-300", 0, 0.5, 24, 1.5, 1.5]
     q = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=128)
     assert q.proved[0] and q.bits == (128,)
     (run,) = q.fallback[0]
     assert isinstance(run, bwcl.FallbackRun) and run.bits == 128 and run.proved
     assert run.reason is None and run.seconds > 0
-    assert 0.0333 < q.e[0, 0] <= q.e[0, 1] < 0.0334
+    assert 0.04166 < q.e[0, 0] <= q.e[0, 1] < 0.04167
     off = bwcl.cor_rigorous("shc", nd=nd, fallback_bits=0)
     assert not off.proved[0] and off.bits == (53,) and off.fallback == (None,)
     assert "undecidable" in off.reason[0]
