@@ -117,6 +117,33 @@ fn the_fallback_does_not_run_where_precision_cannot_help() {
 }
 
 #[test]
+fn the_csv_always_has_a_bits_column() {
+    // a case the f64 intervals decide: 53 bits, in the same columns as a case the fallback
+    // decided (runs written in batches share one header)
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        &nd(12),
+        "--rigorous",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let j = head
+        .iter()
+        .position(|h| *h == "bits")
+        .expect("a bits column");
+    assert_eq!(row[j], "53");
+    assert_eq!(head.len(), row.len());
+}
+
+#[test]
 fn the_cli_names_the_precision_that_decided() {
     // σ = 24: the smallest whole σ f64 cannot decide here (σ = 22 it can), decided at 128 bits
     // in ≈ 0.7 s (σ = 30: ≈ 2.5 s; the library test above keeps σ = 30 and 50)

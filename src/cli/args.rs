@@ -896,7 +896,8 @@ pub struct CorArgs {
     /// With --rigorous: a case the f64-interval engine cannot decide (grazing or undecidable
     /// separation, an enclosure grown too wide, a crossing not proved) is run again on MPFR
     /// intervals at 128, 192, then 256 bits, up to B bits; 0 turns this off. The output names
-    /// the precision that proved each case (a bits column, and in JSON the runs made).
+    /// the precision that proved each case (a bits column — in CSV always, 53 for the f64
+    /// intervals; in the table when the fallback ran — and in JSON the runs made).
     /// For --nd and --base [default: 256].
     #[arg(long, value_name = "B", requires = "rigorous", allow_hyphen_values = true,
           value_parser = fallback_bits)]

@@ -559,7 +559,9 @@ pub fn float_cor(rows: &[FloatRow], format: Format) -> Result<Vec<u8>, CliError>
 /// Renders the rigorous rows of `cor`.
 pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, CliError> {
     let physical = rows.iter().any(|r| r.ts_seconds.is_some());
-    // a bits column when the fallback ran (the f64-interval engine's 53 otherwise implied)
+    // the table has a bits column when the fallback ran (the f64-interval engine's 53
+    // otherwise implied); the CSV always has it, so that runs written in batches share one
+    // header (as `--digits`' CSV does)
     let bits = rows.iter().any(|r| r.fallback.is_some());
     let derived = rows.iter().any(|r| r.derived.is_some());
     let dcols = derived_columns(physical);
@@ -579,9 +581,7 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             if physical {
                 head.extend(["ts_seconds_lo", "ts_seconds_hi"]);
             }
-            if bits {
-                head.push("bits");
-            }
+            head.push("bits");
             let dheads: Vec<String> = dcols
                 .iter()
                 .flat_map(|c| [format!("{c}_lo"), format!("{c}_hi")])
@@ -606,9 +606,7 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                 if physical {
                     c.extend(pair(r.ts_seconds.flatten()));
                 }
-                if bits {
-                    c.push(r.bits.to_string());
-                }
+                c.push(r.bits.to_string());
                 if derived {
                     for x in &derived_of(r)[..dcols.len()] {
                         c.extend(pair(*x));
