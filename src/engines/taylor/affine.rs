@@ -411,4 +411,20 @@ mod tests {
         // 10 rotations by 45°: a half turn and a quarter, the long edge along x
         assert!(h[0].wid() > 1.9e-3 && h[1].wid() < 2.01e-10, "{h:?}");
     }
+
+    #[test]
+    fn sets_that_overflow_are_dropped_for_their_boxes() {
+        // a set carried on with an unbounded centre, symbol or generator is no set: `image` and
+        // `shifted` give None and the caller keeps the direct box (which stays an enclosure)
+        let set = AffineSet::<2, Interval>::from_box(&[iv(0.0, 1e300), iv(1.0, 2.0)]);
+        let big = [[pt(1e300), pt(0.0)], [pt(0.0), pt(1.0)]];
+        let (next, direct) = set.image(&big, &[pt(1.0), pt(1.5)], &[pt(0.0), pt(0.0)]);
+        assert!(next.is_none(), "a generator 1e300·5e299 overflows");
+        assert!(direct[0].sup() == f64::INFINITY && direct[1].inf() <= 1.0);
+        let one = [[pt(1.0), pt(0.0)], [pt(0.0), pt(1.0)]];
+        let (kept, _) = set.image(&one, &[pt(1.0), pt(1.5)], &[pt(0.0), pt(0.0)]);
+        assert!(kept.is_some(), "the finite image is kept");
+        assert!(set.shifted(&[iv(0.0, f64::INFINITY), pt(0.0)]).is_none());
+        assert!(set.shifted(&[pt(1.0), pt(0.0)]).is_some());
+    }
 }
