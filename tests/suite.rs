@@ -23,6 +23,8 @@ mod cli;
 mod cli_fuzz;
 #[path = "compare.rs"]
 mod compare;
+#[path = "curvature.rs"]
+mod curvature;
 #[path = "dop853.rs"]
 mod dop853;
 #[path = "fallback.rs"]

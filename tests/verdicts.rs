@@ -777,3 +777,119 @@ fn a_range_of_alpha_is_proved_and_holds_its_ends() {
     }
     assert!(hull.1 - hull.0 < 0.2, "{hull:?}");
 }
+
+/// `--band --second-order`: node intervals that cover the range, each thinner than the target,
+/// and the printed bounds at a node hold e and T_s proved there to 30 digits (as rationals).
+#[test]
+fn a_second_order_band_covers_the_range_and_its_printed_nodes_hold_precise_values() {
+    use bwcl::engines::taylor::TaylorOptions;
+    use bwcl::models::ModelKind;
+    use bwcl::observables::precision::{ParamText, rigorous_impact_digits};
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let path = dir.join(format!("bwcl-verdict-second-{}.csv", std::process::id()));
+    let p = path.to_str().unwrap();
+    let base = "0.44,-0.418,0.113,0.00785,1.27,3.14";
+    let (o, _) = run_within(
+        &[
+            "cor",
+            "--model",
+            "maxwell",
+            "--base",
+            base,
+            "--v0",
+            "1.5..1.6",
+            "--rigorous",
+            "--band",
+            p,
+            "--second-order",
+            "--thickness",
+            "1e-9",
+        ],
+        300,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    assert!(
+        text(&o.stdout).contains("(second order)"),
+        "{}",
+        text(&o.stdout)
+    );
+    let csv = std::fs::read_to_string(&path).unwrap();
+    let _ = std::fs::remove_file(&path);
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    assert!(rows.len() >= 2, "{csv}");
+    let rat = |s: &str| bwcl::observables::decimal::parse_rational(s).unwrap();
+    assert_eq!(rat(&rows[0][col("v0_lo")]), rat("1.5"));
+    // (the nodes exactly: the range's ends are the doubles that enclose it)
+    let last = rat(&rows[rows.len() - 1][col("v0_hi")]);
+    assert!(
+        last >= rat("1.6") && last <= rat("1.6000000000000001"),
+        "{last}"
+    );
+    for w in rows.windows(2) {
+        assert_eq!(w[0][col("v0_hi")], w[1][col("v0_lo")], "no gap");
+    }
+    for r in &rows {
+        assert!(rat(&r[col("v0_lo")]) < rat(&r[col("v0_hi")]), "{r:?}");
+        assert!(rat(&r[col("thickness")]) <= rat("1e-9"), "{r:?}");
+    }
+    // a node inside the range: its printed enclosures against 30 digits
+    let r = &rows[rows.len() / 2];
+    let v = &r[col("v0_lo")];
+    let precise = rigorous_impact_digits(
+        ModelKind::Maxwell,
+        &ParamText::Base {
+            base: base.into(),
+            v0: v.clone(),
+        },
+        30,
+        &TaylorOptions::default(),
+    )
+    .unwrap();
+    assert!(
+        rat(&r[col("e_at_lo_lo")]) <= precise.e[0] && precise.e[1] <= rat(&r[col("e_at_lo_hi")])
+    );
+    assert!(
+        rat(&r[col("ts_at_lo_lo")]) <= precise.ts[0]
+            && precise.ts[1] <= rat(&r[col("ts_at_lo_hi")])
+    );
+}
+
+#[test]
+fn a_second_order_band_out_of_time_says_so_and_writes_nothing() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let path = dir.join(format!(
+        "bwcl-verdict-second-time-{}.csv",
+        std::process::id()
+    ));
+    let p = path.to_str().unwrap();
+    let (o, _) = run_within(
+        &[
+            "cor",
+            "--model",
+            "shc",
+            "--base",
+            "1.43,-1.42,0.632,0.00715,1.31,1.27",
+            "--v0",
+            "0.1..5",
+            "--rigorous",
+            "--band",
+            p,
+            "--second-order",
+            "--time-limit",
+            "1",
+        ],
+        60,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    let err = text(&o.stderr);
+    assert!(
+        err.contains("the time budget of 1 s ran out (--time-limit)"),
+        "{err}"
+    );
+    assert!(!path.exists());
+}

@@ -161,6 +161,14 @@ pub fn band_report(
     let bar = watch
         .is_none()
         .then(|| super::progress::Progress::range("cor --band", a.engine.time_limit));
+    if a.second_order {
+        let progress = watch.or_else(|| bar.as_ref().map(|b| b.callback()));
+        let r = super::band_second::report(a, kind, &base, lo, hi, &opts, json_file, progress);
+        if let Some(b) = &bar {
+            b.finish();
+        }
+        return r;
+    }
     let bo = BandOptions {
         thickness: a.thickness.unwrap_or(1e-6),
         // --order when given, else the band's own default
@@ -173,21 +181,7 @@ pub fn band_report(
     if let Some(b) = &bar {
         b.finish();
     }
-    let band = band.map_err(|e| {
-        let why = if e.out_of_time() {
-            let rest = e
-                .reason
-                .strip_prefix(bwcl::engines::taylor::DEADLINE)
-                .unwrap_or("");
-            format!(
-                "the time budget of {} s ran out (--time-limit){rest}",
-                input::time_limit(a.engine.time_limit)
-            )
-        } else {
-            e.reason
-        };
-        CliError::Failed(format!("band not proved: {why}"))
-    })?;
+    let band = band.map_err(|e| not_proved(a, e))?;
     let secs = start.elapsed().as_secs_f64();
     let thick = band.thickness();
     let bytes = if json_file {
@@ -225,6 +219,23 @@ pub fn band_report(
         ),
     );
     Ok((bytes, summary))
+}
+
+/// The error of a band not proved, naming why (the time budget, or the engine's reason).
+pub fn not_proved(a: &CorArgs, e: bwcl::engines::taylor::RigorError) -> CliError {
+    let why = if e.out_of_time() {
+        let rest = e
+            .reason
+            .strip_prefix(bwcl::engines::taylor::DEADLINE)
+            .unwrap_or("");
+        format!(
+            "the time budget of {} s ran out (--time-limit){rest}",
+            input::time_limit(a.engine.time_limit)
+        )
+    } else {
+        e.reason
+    };
+    CliError::Failed(format!("band not proved: {why}"))
 }
 
 /// `prove monotone`: the report on stdout; exit 1 unless proved.

@@ -5,6 +5,7 @@
 // rows
 pub mod args;
 pub mod band;
+pub mod band_second;
 pub mod classical;
 pub mod commands;
 pub mod compare;

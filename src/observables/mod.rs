@@ -11,6 +11,8 @@
 //!   proved.
 
 pub mod band;
+pub mod band_second;
+pub mod curvature;
 pub mod decimal;
 pub mod derived;
 pub mod precision;

@@ -216,7 +216,7 @@ pub struct Slope {
     pub e: Interval,
 }
 
-fn param_error(e: ParamError) -> RigorError {
+pub(super) fn param_error(e: ParamError) -> RigorError {
     RigorError {
         reason: e.0,
         t: 0.0,
@@ -383,7 +383,7 @@ pub struct SetSlopes {
 
 /// The indices of the ranged inputs (1 to [`MAX_UNCERTAIN`] of them) of valid inputs: what a
 /// run over a set needs.
-fn ranged(kind: ModelKind, inputs: &Inputs<Interval>) -> Result<Vec<usize>, RigorError> {
+pub(super) fn ranged(kind: ModelKind, inputs: &Inputs<Interval>) -> Result<Vec<usize>, RigorError> {
     inputs.nd(kind).map_err(param_error)?;
     let vals = inputs.values();
     let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
@@ -539,7 +539,7 @@ fn point(
 /// The parameter components of a system with D = N + slots + …: slot k holds input
 /// `ranges[k]` (unused slots 0), as `record_with`'s declaration and in x(0) (the rest of x(0)
 /// is 0 until [`model_start`] fills the model's state).
-fn parameter_slots<const N: usize, const D: usize>(
+pub(super) fn parameter_slots<const N: usize, const D: usize>(
     vals: &[Interval],
     ranges: &[usize],
     slots: usize,
@@ -556,7 +556,7 @@ fn parameter_slots<const N: usize, const D: usize>(
 }
 
 /// Writes the model's initial state (it does not depend on the parameters) into x(0).
-fn model_start<R: Real, M: CollisionModel<R, N>, const N: usize, const D: usize>(
+pub(super) fn model_start<R: Real, M: CollisionModel<R, N>, const N: usize, const D: usize>(
     build: impl Fn(NdParams<R>) -> M,
     kind: ModelKind,
     inputs: &Inputs<Interval>,

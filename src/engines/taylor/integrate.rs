@@ -270,6 +270,11 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
         here: &Survey<N, I>,
     ) -> (Option<StepOut<N, I>>, Option<StepOut<N, I>>) {
         let (tape, opts, t, w) = (self.tape, self.opts, self.t, here.w);
+        // (not for a second variational system: the expansions hold no negative exponents of
+        // S₂'s |w|^(q−2), nor the kinks' jumps of S₂)
+        if tape.second_order().is_some() {
+            return (None, None);
+        }
         let n_state = self.n_state;
         let width = |x: &[I; N]| state_width(x, n_state);
         // one branch point near and approached: across it in one singular step
@@ -482,9 +487,14 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
                 });
             }
             if let Some(mut o) = step::low_order_step(tape, t, &self.x, h) {
-                // the affine set moved by τ·f(Y) (see AffineSet::shifted)
-                if let (Some(p), true, Piece::LowOrder { t0, t1, slope, .. }) =
-                    (&self.rep, opts.qr && w > WIDE_SET, &o.piece)
+                // the affine set moved by τ·f(Y) (see AffineSet::shifted) — unless the step
+                // moved the set by more than that (a piece starting elsewhere than the set: the
+                // integrable singular terms or the kink jump of a second variational system,
+                // [`super::integrable`]); the set is then dropped
+                let moved_more = matches!(&o.piece, Piece::LowOrder { x0, .. }
+                    if x0.iter().zip(self.x.iter()).any(|(a, b)| !a.identical(b)));
+                if let (Some(p), true, false, Piece::LowOrder { t0, t1, slope, .. }) =
+                    (&self.rep, opts.qr && w > WIDE_SET, moved_more, &o.piece)
                 {
                     let tau1 = flow::tau(&I::from_exact_f64(*t1), *t0);
                     let d: [I; N] = std::array::from_fn(|i| tau1.clone() * slope[i].clone());
@@ -499,7 +509,7 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
                     <= opts.cross_tol.max(1e-3 * w) + 4.0 * I::epsilon() * step::magnitude(&o.x1)
                 {
                     self.h_low = h;
-                    break Ok(o);
+                    break Ok(self.across_kinks(&o, w).unwrap_or(o));
                 }
                 if h < 4.0 * floor && added <= 1e-3 * f64::EPSILON * step::magnitude(&o.x1).max(1.0)
                 {
@@ -508,6 +518,50 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
             }
             h *= 0.25;
         }
+    }
+
+    /// For a second variational system, a low-order step `o` that ends with a kink component
+    /// straddling 0 where it started on one side: the step that carries every member across
+    /// instead, if one validates and adds at most 10× the tolerance of the state's width —
+    /// its S₂ then gets the jump ΔS₂ itself, not hull(0, ΔS₂) twice
+    /// ([`super::integrable::kink_jump`]).
+    fn across_kinks(&self, o: &StepOut<N, I>, w: f64) -> Option<StepOut<N, I>> {
+        let lay = self.tape.second_order()?;
+        let (x, t) = (&self.x, self.t);
+        let Piece::LowOrder { slope, .. } = &o.piece else {
+            return None;
+        };
+        // the time every member needs to cross, at the slowest rate over the step
+        let need = self
+            .tape
+            .kinks()
+            .iter()
+            .filter(|&&k| k < lay.n)
+            .filter_map(|&k| {
+                let s = crate::arith::Real::sign(&x[k])?;
+                let after = crate::arith::Real::sign(&o.x1[k]);
+                (after != Some(-s) && slope[k].mig_f64() > 0.0)
+                    .then(|| x[k].mag_f64() / slope[k].mig_f64())
+            })
+            .fold(0.0, f64::max);
+        if need == 0.0 {
+            return None;
+        }
+        let width = |x: &[I; N]| state_width(x, self.n_state);
+        let tol = self.opts.cross_tol.max(1e-3 * w);
+        [1.25, 2.0, 4.0].iter().find_map(|&f| {
+            let c = step::low_order_step(self.tape, t, x, f * need)?;
+            let crossed = self.tape.kinks().iter().filter(|&&k| k < lay.n).all(|&k| {
+                match crate::arith::Real::sign(&x[k]) {
+                    Some(s) => {
+                        crate::arith::Real::sign(&o.x1[k]) == Some(s)
+                            || crate::arith::Real::sign(&c.x1[k]) == Some(-s)
+                    }
+                    None => true,
+                }
+            });
+            (crossed && width(&c.x1) - w <= 10.0 * tol).then_some(c)
+        })
     }
 
     /// The step's piece into the flow, scanned for the separation event (state width `w` at

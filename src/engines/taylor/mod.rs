@@ -21,8 +21,11 @@
 //! this file (the entry points).
 
 pub mod affine;
+mod boxes;
+pub mod crossing;
 pub mod event;
 pub mod flow;
+pub mod integrable;
 mod integrate;
 pub mod linear;
 #[cfg(test)]

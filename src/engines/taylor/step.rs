@@ -22,6 +22,8 @@
 //! switching surface because f is only evaluated, never expanded.
 
 use super::affine::AffineSet;
+pub use super::boxes::eps_scale;
+use super::boxes::{hull, inflate, keep_params, span, subset};
 pub use super::flow::taylor_eval;
 use super::flow::{Piece, tau};
 use super::newton::{Newton, interval_newton};
@@ -40,11 +42,6 @@ pub fn time_spacing(t: f64) -> f64 {
     a.next_up() - a
 }
 
-/// [0, h].
-fn span<I: Enclosure>(h: f64) -> I {
-    I::from_bounds(0.0, h).expect("a step length")
-}
-
 /// The end t1 = fl(t0 + h) of a step and the τ-range [0, t1 − t0] on which it is validated, with
 /// the upper end rounded up: fl(t1 − t0) may lie below the exact difference (t1 > 2 t0), and
 /// the piece is used up to the exact t1.
@@ -57,50 +54,6 @@ fn point(x: f64) -> Interval {
     super::flow::point(x)
 }
 
-/// a ⊆ int b, except for the parameter components (ṗ = 0 exactly: a ⊆ b).
-fn subset<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N], params: &[usize]) -> bool {
-    (0..N).all(|i| {
-        if params.contains(&i) {
-            a[i].subset(&b[i])
-        } else {
-            a[i].interior(&b[i])
-        }
-    })
-}
-
-/// A guess of an a-priori box with the parameter components kept at their values in x (a
-/// parameter is constant: inflating it would leave its admissible range, e.g. n < 1).
-fn keep_params<const N: usize, I: Enclosure>(
-    mut y: [I; N],
-    x: &[I; N],
-    params: &[usize],
-) -> [I; N] {
-    for &i in params {
-        y[i] = x[i].clone();
-    }
-    y
-}
-
-/// Inflates a box: mid ± (factor·rad + abs).
-fn inflate<const N: usize, I: Enclosure>(y: &[I; N], factor: f64, abs: f64) -> [I; N] {
-    std::array::from_fn(|i| {
-        let r = y[i].rad_f64() * factor + abs + y[i].mag_f64() * (1e-15 * eps_scale::<I>());
-        // an empty or unbounded component (r NaN or ∞) stays unbounded: the test then fails
-        match I::from_bounds(-r, r) {
-            Some(b) => y[i].clone() + b,
-            None => I::entire(),
-        }
-    })
-}
-
-/// The type's machine epsilon relative to f64's (exactly 1 for inari intervals): the relative
-/// floors of the f64 engine (a guess's inflation, the smallest tolerance) scaled to the
-/// precision.
-#[inline]
-pub fn eps_scale<I: Enclosure>() -> f64 {
-    I::epsilon() / f64::EPSILON
-}
-
 /// wid(r)·h^k, an upper bound (through log₂ when wid(r) is beyond f64's range).
 fn scaled_width<I: Enclosure>(r: &I, h: f64, k: usize) -> f64 {
     let w = r.wid_f64();
@@ -111,10 +64,6 @@ fn scaled_width<I: Enclosure>(r: &I, h: f64, k: usize) -> f64 {
         let v = (r.mag_log2() + 1.0 + k as f64 * h.log2()).exp2();
         if v.is_nan() { f64::INFINITY } else { v }
     }
-}
-
-fn hull<const N: usize, I: Enclosure>(a: &[I; N], b: &[I; N]) -> [I; N] {
-    std::array::from_fn(|i| a[i].hull(&b[i]))
 }
 
 /// A proved step: the piece, the box at its end, and (for a Taylor step) the a-priori box.
@@ -611,6 +560,12 @@ pub fn low_order_to<const N: usize, I: Enclosure>(
     };
     let f0 = field(x);
     let params = tape.params();
+    // a field unbounded at X (or just beside it): integrable singular terms (a second
+    // variational system at a branch point)
+    let singular = !tape.negative_powers().is_empty();
+    if singular && !(bounded(&f0) && bounded(&field(&inflate(x, 1.0, 1e-300)))) {
+        return super::integrable::step(tape, t0, x, t1);
+    }
     let mut y = keep_params(
         inflate(
             &std::array::from_fn(|i| x[i].clone() + s.clone() * f0[i].clone()),
@@ -622,21 +577,32 @@ pub fn low_order_to<const N: usize, I: Enclosure>(
     );
     for _ in 0..6 {
         let fy = field(&y);
-        let ynew: [I; N] = std::array::from_fn(|i| x[i].clone() + s.clone() * fy[i].clone());
-        if ynew.iter().all(|c| c.is_finite()) && subset(&ynew, &y, params) {
+        // a second variational system's S₂ jumps where a kink is crossed (hull(0, ΔS₂))
+        let jump = super::integrable::kink_jump(tape, x, &y, None);
+        let ynew: [I; N] = std::array::from_fn(|i| {
+            let v = x[i].clone() + s.clone() * fy[i].clone();
+            match &jump {
+                Some(j) => v + j[i].clone(),
+                None => v,
+            }
+        });
+        if ynew.iter().all(|c| c.is_finite() && !c.is_empty()) && subset(&ynew, &y, params) {
             let fy2 = field(&ynew);
             // f over the tighter box encloses f(Φ) too (Φ stays in ynew)
             let slope: [I; N] = std::array::from_fn(|i| fy[i].intersection(&fy2[i]));
             let tau1 = tau(&I::from_exact_f64(t1), t0);
-            let x1 = std::array::from_fn(|i| x[i].clone() + tau1.clone() * slope[i].clone());
+            let mut x1: [I; N] =
+                std::array::from_fn(|i| x[i].clone() + tau1.clone() * slope[i].clone());
+            let mut x0 = x.clone();
+            if let Some(j) = super::integrable::kink_jump(tape, x, &ynew, Some(&x1)) {
+                x1 = std::array::from_fn(|i| x1[i].clone() + j[i].clone());
+            }
+            if let Some(j) = super::integrable::kink_jump(tape, x, &ynew, None) {
+                x0 = std::array::from_fn(|i| x0[i].clone() + j[i].clone());
+            }
             return Some(StepOut {
                 rep: None,
-                piece: Piece::LowOrder {
-                    t0,
-                    t1,
-                    x0: x.clone(),
-                    slope,
-                },
+                piece: Piece::LowOrder { t0, t1, x0, slope },
                 x1,
                 apriori: ynew,
             });
@@ -645,7 +611,11 @@ pub fn low_order_to<const N: usize, I: Enclosure>(
         // which lets components that feed each other chase one another)
         y = keep_params(inflate(&ynew, 0.25, 1e-300), x, params);
     }
-    None
+    if singular {
+        super::integrable::step(tape, t0, x, t1)
+    } else {
+        None
+    }
 }
 
 /// The widest component of a box.

@@ -71,6 +71,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             lins: f.lins,
             rounding,
             extra_needed: std::sync::OnceLock::new(),
+            second_order: self.second_order,
         };
         t.lin_merges = lin_merges(&t.lins, &t.sign_copy_of, &t.mergeable);
         t

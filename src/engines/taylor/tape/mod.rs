@@ -47,6 +47,7 @@
 
 mod eval;
 mod fused;
+mod integrable;
 mod jet;
 mod merges;
 mod powers;
@@ -57,6 +58,7 @@ mod tests;
 
 pub use super::op::Op;
 pub use super::rec::Rec;
+pub use integrable::{Degree, NegativePower};
 pub use powers::analytic_power;
 
 use super::linear::Lin;
@@ -119,6 +121,31 @@ pub struct Tape<R, const N: usize> {
     /// The nodes the extra outputs (those after the field) depend on, made when first asked
     /// for ([`Tape::eval_extra`]).
     extra_needed: std::sync::OnceLock<Vec<bool>>,
+    /// A second variational system's layout ([`SecondOrder`]), when the tape is one: a step
+    /// across a kink adds the jump of S₂ there ([`crate::engines::taylor::integrable`]).
+    second_order: Option<SecondOrder>,
+}
+
+/// The layout of a second variational system (x, u, S, S₂) for one parameter u: x the model's
+/// n state components, then u, S = ∂x/∂u (n), S₂ = ∂²x/∂u² (n); D = 3n + 1 components.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SecondOrder {
+    pub n: usize,
+}
+
+impl SecondOrder {
+    /// The index of u.
+    pub fn u(&self) -> usize {
+        self.n
+    }
+    /// The index of S_i.
+    pub fn s(&self, i: usize) -> usize {
+        self.n + 1 + i
+    }
+    /// The index of (S₂)_i.
+    pub fn s2(&self, i: usize) -> usize {
+        2 * self.n + 1 + i
+    }
 }
 
 /// How the tape rounds a fused linear form c₀ + Σ cⱼ·xⱼ ([`Tape::fused`]).
@@ -156,6 +183,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             lins: self.lins.clone(),
             rounding: self.rounding,
             extra_needed: std::sync::OnceLock::new(),
+            second_order: self.second_order,
         }
     }
 
@@ -178,6 +206,21 @@ impl<R: Real, const N: usize> Tape<R, N> {
         self.ops
             .iter()
             .any(|op| matches!(op, Op::SpowV(..) | Op::ApowV(..)))
+    }
+
+    /// The tape marked as a second variational system with `layout` (its kink crossings then
+    /// carry the jump of S₂). Panics unless the layout has N = 3n + 1 components and u is a
+    /// parameter component.
+    pub fn with_second_order(mut self, layout: SecondOrder) -> Self {
+        assert_eq!(N, 3 * layout.n + 1, "(x, u, S, S2) has 3n + 1 components");
+        assert!(self.params.contains(&layout.u()), "u is constant in time");
+        self.second_order = Some(layout);
+        self
+    }
+
+    /// The second variational system's layout, if the tape is one.
+    pub fn second_order(&self) -> Option<SecondOrder> {
+        self.second_order
     }
 
     /// The parameter components: constant in time (see [`Tape::record_with`]).

@@ -299,6 +299,7 @@ impl<R: Real, const N: usize> Tape<R, N> {
             lins: Vec::new(),
             rounding: Rounding::Each,
             extra_needed: std::sync::OnceLock::new(),
+            second_order: None,
         }
     }
 }

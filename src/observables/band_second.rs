@@ -1,0 +1,330 @@
+//! The proved CoR curve over a range of v0 at thicknesses far below the first-order band's
+//! (issue #32 item 4): pieces in an interpolation form.
+//!
+//! On a piece [a, b], one run of the second variational system ([`super::curvature`]) proves
+//! [e″] and [T_s″] over the whole piece; point runs prove e and T_s at nodes
+//! a = v_0 < v_1 < … < v_m = b (exact doubles). Between two nodes, by the interpolation error
+//! formula (Peano's kernel (v − v_k)(v − v_{k+1})/2 ≤ 0 keeps its sign, so the mean value
+//! theorem applies to e″ over [v_k, v_{k+1}]):
+//!
+//! ```text
+//! e(v) ∈ e(v_k)·(v_{k+1} − v)/h + e(v_{k+1})·(v − v_k)/h + [e″]·(v − v_k)(v − v_{k+1})/2
+//! ```
+//!
+//! (h = v_{k+1} − v_k; likewise T_s). The width at v is at most
+//! max(wid e(v_k), wid e(v_{k+1})) + wid[e″]·h²/8: the known part of e″ (its midpoint) is carried
+//! by the form, only its width costs thickness, and wid[e″] ∝ the piece's width — so a piece
+//! is wide and its nodes cheap (a point run is ≈ 1/30 of a second-order range run). The first
+//! order's thickness wid[e′]·w/2 ∝ w^2.4 needed ≈ 13 times more range runs at 1e-9
+//! (benches/RESULTS.md).
+//!
+//! The nodes per piece come from the target: wid[e″]·h²/8 ≤ 0.95·target (the rest for the
+//! nodes' own widths, ≈ 1e-12: their runs' tolerance per step is 10⁻⁴ of the target); a piece needing more than [`MAX_NODES`] intervals, or whose run
+//! fails, is halved.
+
+use super::band::Progress;
+use super::curvature::curvature_over_range;
+use super::sets::{Inputs, prove_at_point};
+use crate::engines::taylor::{RigorError, TaylorOptions};
+use crate::models::{ModelKind, NdParams};
+use inari::Interval;
+use rayon::prelude::*;
+
+/// Most node intervals on one piece (beyond, the piece is halved: its [e″] narrows ∝ width).
+pub const MAX_NODES: usize = 128;
+
+/// A piece in the interpolation form (module doc).
+#[derive(Clone, Debug)]
+pub struct InterpPiece {
+    /// The nodes v_k (exact doubles, the first and last the piece's ends) with e(v_k), T_s(v_k).
+    pub nodes: Vec<(f64, Interval, Interval)>,
+    /// e″ and T_s″ over the whole piece.
+    pub e2: Interval,
+    pub ts2: Interval,
+    /// e′ over the whole piece (from the same run).
+    pub e1: Interval,
+}
+
+fn point(x: f64) -> Interval {
+    Interval::try_from((x, x)).expect("a finite double")
+}
+
+/// Rounded-up width of an interval.
+fn width_up(x: Interval) -> f64 {
+    (point(x.sup()) - point(x.inf())).sup()
+}
+
+impl InterpPiece {
+    pub fn v0_lo(&self) -> f64 {
+        self.nodes[0].0
+    }
+    pub fn v0_hi(&self) -> f64 {
+        self.nodes[self.nodes.len() - 1].0
+    }
+
+    /// The interpolation form of `q` (e or T_s: the node values `val`, second derivative `d2`)
+    /// at v0 in the node interval k.
+    fn form(
+        &self,
+        k: usize,
+        v0: Interval,
+        val: impl Fn(usize) -> Interval,
+        d2: Interval,
+    ) -> Interval {
+        let (a, b) = (point(self.nodes[k].0), point(self.nodes[k + 1].0));
+        let h = b - a;
+        let (p, q) = (v0 - a, b - v0);
+        (val(k) * q + val(k + 1) * p) / h - d2 * p * q / point(2.0)
+    }
+
+    /// The node interval holding v0 (the first one at a shared node).
+    fn interval_of(&self, v0: Interval) -> Option<usize> {
+        let k = self
+            .nodes
+            .windows(2)
+            .position(|w| w[0].0 <= v0.inf() && v0.sup() <= w[1].0)?;
+        Some(k)
+    }
+
+    /// The enclosure of e(v0) for v0 (an interval inside one node interval of the piece).
+    pub fn e_at(&self, v0: Interval) -> Option<Interval> {
+        let k = self.interval_of(v0)?;
+        Some(self.form(k, v0, |i| self.nodes[i].1, self.e2))
+    }
+
+    /// The enclosure of T_s(v0).
+    pub fn ts_at(&self, v0: Interval) -> Option<Interval> {
+        let k = self.interval_of(v0)?;
+        Some(self.form(k, v0, |i| self.nodes[i].2, self.ts2))
+    }
+
+    /// The largest width of the enclosure of e(v0) on the piece (rounded up): per node
+    /// interval max(wid e(v_k), wid e(v_{k+1})) + wid[e″]·h²/8, with a margin for the rounding
+    /// of the evaluation at interior points.
+    pub fn thickness(&self) -> f64 {
+        (0..self.nodes.len() - 1)
+            .map(|k| self.interval_thickness(k))
+            .fold(0.0, f64::max)
+    }
+
+    /// The hull of e over the node interval k: e(v) − L(v) = −e″(ξ)·pq/2 with pq ∈ [0, h²/4],
+    /// so e ∈ hull(e(v_k), e(v_{k+1})) − [e″]·[0, h²/8].
+    pub fn hull_on(&self, k: usize) -> Interval {
+        let (a, b) = (&self.nodes[k], &self.nodes[k + 1]);
+        let h = point(b.0) - point(a.0);
+        let quad = Interval::try_from((0.0, (h * h / point(8.0)).sup())).expect("h ≥ 0");
+        a.1.convex_hull(b.1) - self.e2 * quad
+    }
+
+    /// The largest width of the enclosure of e(v0) on the node interval k (rounded up).
+    pub fn interval_thickness(&self, k: usize) -> f64 {
+        let (a, b) = (&self.nodes[k], &self.nodes[k + 1]);
+        let h = (point(b.0) - point(a.0)).sup();
+        let mag = a.1.mag().max(b.1.mag()).max(1.0);
+        let quad = (point(width_up(self.e2)) * point(h) * point(h) / point(8.0)).sup();
+        width_up(a.1).max(width_up(b.1)) + quad + 16.0 * f64::EPSILON * mag
+    }
+}
+
+/// A band of interpolation pieces over [a, b] (in order, sharing their end nodes).
+#[derive(Clone, Debug)]
+pub struct InterpBand {
+    pub pieces: Vec<InterpPiece>,
+    /// Second-order range runs and point runs made.
+    pub range_runs: usize,
+    pub point_runs: usize,
+}
+
+impl InterpBand {
+    pub fn thickness(&self) -> f64 {
+        self.pieces
+            .iter()
+            .map(InterpPiece::thickness)
+            .fold(0.0, f64::max)
+    }
+    /// The piece holding v0 (the first one at a shared end).
+    pub fn piece_at(&self, v0: f64) -> Option<&InterpPiece> {
+        self.pieces
+            .iter()
+            .find(|p| p.v0_lo() <= v0 && v0 <= p.v0_hi())
+    }
+}
+
+/// The band's options: the target thickness, the first pieces' width, the narrowest piece, a
+/// progress display.
+#[derive(Clone, Debug)]
+pub struct InterpOptions {
+    pub thickness: f64,
+    pub first_width: f64,
+    pub min_width: f64,
+    /// Told (share of the range settled, pieces settled) as each piece settles.
+    pub progress: Option<Progress>,
+}
+
+/// Measured on [0.1, 5] at 1e-9 (benches/RESULTS.md): pieces of 0.05 first, halved where
+/// [e″] needs more than [`MAX_NODES`] intervals.
+impl Default for InterpOptions {
+    fn default() -> Self {
+        Self {
+            thickness: 1e-9,
+            first_width: 0.05,
+            min_width: 1e-6,
+            progress: None,
+        }
+    }
+}
+
+fn point_run(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    v: f64,
+    opts: &TaylorOptions,
+) -> Result<(Interval, Interval), RigorError> {
+    let inputs = Inputs::Base {
+        base: base.clone(),
+        v0: point(v),
+    };
+    let (ts, e) = prove_at_point(kind, &inputs, opts)?;
+    Ok((e, ts))
+}
+
+/// One piece [lo, hi]: the range run, then the nodes (`Ok(None)`: the piece must be halved).
+fn prove_piece(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    lo: f64,
+    hi: f64,
+    io: &InterpOptions,
+    opts: &TaylorOptions,
+) -> Result<Option<(InterpPiece, usize)>, RigorError> {
+    let inputs = Inputs::Base {
+        base: base.clone(),
+        v0: Interval::try_from((lo, hi)).map_err(|_| RigorError {
+            reason: format!("bad range of v0: [{lo}, {hi}]"),
+            t: 0.0,
+            width: 0.0,
+        })?,
+    };
+    let c = match curvature_over_range(kind, &inputs, opts) {
+        Ok(c) => c,
+        Err(e) if e.out_of_time() || hi - lo < 2.0 * io.min_width => return Err(e),
+        Err(_) => return Ok(None),
+    };
+    // nodes: wid[e″]·h²/8 ≤ 0.95·target (the rest for the nodes' own widths, ≈ 1e-12)
+    let w2 = width_up(c.e2);
+    let m = ((hi - lo) * (w2 / (7.6 * io.thickness)).sqrt())
+        .ceil()
+        .max(1.0);
+    if m.is_nan() || m > MAX_NODES as f64 {
+        return if hi - lo < 2.0 * io.min_width {
+            Err(RigorError {
+                reason: format!("e'' too wide on [{lo}, {hi}] for the thickness"),
+                t: 0.0,
+                width: w2,
+            })
+        } else {
+            Ok(None)
+        };
+    }
+    let m = m as usize;
+    let node_opts = TaylorOptions {
+        tol: opts.tol.max(1e-4 * io.thickness),
+        ..opts.clone()
+    };
+    let vs: Vec<f64> = (0..=m)
+        .map(|k| match k {
+            0 => lo,
+            k if k == m => hi,
+            k => lo + (hi - lo) * k as f64 / m as f64,
+        })
+        .collect();
+    if vs.windows(2).any(|w| w[0] >= w[1]) {
+        return Ok(None);
+    }
+    let nodes = vs
+        .iter()
+        .map(|&v| point_run(kind, base, v, &node_opts).map(|(e, ts)| (v, e, ts)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let p = InterpPiece {
+        nodes,
+        e2: c.e2,
+        ts2: c.ts2,
+        e1: c.e1,
+    };
+    if p.thickness() > io.thickness {
+        return if hi - lo < 2.0 * io.min_width {
+            Err(RigorError {
+                reason: format!("the nodes' own widths exceed the thickness on [{lo}, {hi}]"),
+                t: 0.0,
+                width: p.thickness(),
+            })
+        } else {
+            Ok(None)
+        };
+    }
+    Ok(Some((p, m + 1)))
+}
+
+/// Proves the band of e (and T_s) over v0 ∈ [a, b] for base set `base` in the interpolation
+/// form (module doc), thickness at most `io.thickness`; the pieces of a round run in parallel.
+/// Fails with the first piece that cannot be proved down to `io.min_width`.
+pub fn prove_band_second(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    a: f64,
+    b: f64,
+    io: &InterpOptions,
+    opts: &TaylorOptions,
+) -> Result<InterpBand, RigorError> {
+    let n = ((b - a) / io.first_width).ceil().clamp(1.0, 1e6) as usize;
+    let mut todo: Vec<(f64, f64)> = super::band::short_cuts(a, b, n)
+        .windows(2)
+        .map(|w| (w[0], w[1]))
+        .collect();
+    let mut done: Vec<InterpPiece> = Vec::new();
+    let (mut range_runs, mut point_runs) = (0, 0);
+    let settled = std::sync::Mutex::new((0.0f64, 0usize));
+    while !todo.is_empty() {
+        if opts.out_of_time() {
+            return Err(RigorError {
+                reason: crate::engines::taylor::DEADLINE.into(),
+                t: 0.0,
+                width: 0.0,
+            });
+        }
+        let results: Vec<_> = todo
+            .par_iter()
+            .map(|&(lo, hi)| {
+                let r = prove_piece(kind, base, lo, hi, io, opts);
+                if let (Some(Progress(f)), Ok(Some(_))) = (&io.progress, &r) {
+                    // (one thread at a time, so that the shares told never go back)
+                    let mut s = settled.lock().expect("no panic");
+                    s.0 += hi - lo;
+                    s.1 += 1;
+                    f((s.0 / (b - a)).clamp(0.0, 1.0), s.1);
+                }
+                (lo, hi, r)
+            })
+            .collect();
+        todo.clear();
+        for (lo, hi, r) in results {
+            range_runs += 1;
+            match r? {
+                Some((p, points)) => {
+                    point_runs += points;
+                    done.push(p);
+                }
+                None => {
+                    let cut = super::band::short_cuts(lo, hi, 2);
+                    todo.extend(cut.windows(2).map(|w| (w[0], w[1])));
+                }
+            }
+        }
+    }
+    done.sort_by(|x, y| x.v0_lo().total_cmp(&y.v0_lo()));
+    Ok(InterpBand {
+        pieces: done,
+        range_runs,
+        point_runs,
+    })
+}

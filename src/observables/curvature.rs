@@ -1,0 +1,326 @@
+//! Second derivatives of T_s and e in one input u over a range of it, proved: one run of the
+//! second variational system (x, u, S, S₂) ([`SecondOrder`]), S = ∂x/∂u, S₂ = ∂²x/∂u²,
+//!
+//! ```text
+//! Ṡ = D_x f·S + ∂_u f,     Ṡ₂ = D_x f·S₂ + D²f[S̃, S̃]   (S̃ = (S, 1)),   S(0) = S₂(0) = 0,
+//! ```
+//!
+//! the field differentiated twice on hyper-duals (the models unchanged). D²f holds |Z|^(n−2)
+//! and |X|^(p−2) (eq:BWHCL, eq:BWMCM_nd): unbounded at the branch points but integrable along
+//! a path crossing them, which the engine's low-order step bounds, and the kink |V| makes S₂
+//! jump ([`crate::engines::taylor::integrable`]). At the separation (F = 0 crossed with
+//! V > 0), with G(T, u) = F(x(T, u), u) and H(T, u) = V(x(T, u), u), the implicit function
+//! theorem twice:
+//!
+//! ```text
+//! T′ = −G_u/G_T,     T″ = −(G_uu + 2·G_uT·T′ + G_TT·T′²)/G_T,
+//! e′ = H_u + H_T·T′,  e″ = H_uu + 2·H_uT·T′ + H_TT·T′² + H_T·T″
+//! ```
+//!
+//! each factor enclosed over the event's state box (every T_s(u), every u). Where the
+//! separation is V = 0 crossed upwards with F < 0 for the whole range, e ≡ 0. What it is for:
+//! e(v) − L(v) ∈ [e″]·(v − v_k)(v − v_{k+1})/2 between proved point values (the band at a
+//! thickness far below the first-order form's, issue #32 item 4), convexity over a range.
+
+use super::sets::{Inputs, is_range, model_start, param_error, parameter_slots};
+use crate::arith::Real;
+use crate::arith::jet::dual::Dual;
+use crate::engines::taylor::crossing;
+use crate::engines::taylor::rec::Rec;
+use crate::engines::taylor::tape::{SecondOrder, Tape, Workspace};
+use crate::engines::taylor::{Flow, RigorError, SeparationEvent, TaylorOptions, integrate_system};
+use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
+use inari::Interval;
+
+/// The hyper-dual numbers of the recording: value, two first derivatives, the second.
+type H = Dual<Dual<Rec<Interval>, 1>, 1>;
+
+/// T_s, e and their first and second derivatives in one input over a range of it.
+#[derive(Clone, Copy, Debug)]
+pub struct Curvature {
+    /// The ranged input's index in [`Inputs::values`].
+    pub input: usize,
+    pub ts: Interval,
+    pub e: Interval,
+    pub ts1: Interval,
+    pub e1: Interval,
+    pub ts2: Interval,
+    pub e2: Interval,
+    /// Pieces of the proved flow.
+    pub steps: usize,
+}
+
+fn fail(reason: &str, t: f64, width: f64) -> RigorError {
+    RigorError {
+        reason: reason.into(),
+        t,
+        width,
+    }
+}
+
+/// [`Curvature`] of model `kind` over `inputs`, exactly one of which is a range.
+pub fn curvature_over_range(
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    opts: &TaylorOptions,
+) -> Result<Curvature, RigorError> {
+    inputs.nd(kind).map_err(param_error)?;
+    let vals = inputs.values();
+    let ranges: Vec<usize> = (0..vals.len()).filter(|&i| is_range(&vals[i])).collect();
+    let [ju] = ranges[..] else {
+        return Err(fail(
+            &format!(
+                "{} inputs are ranges; the second derivatives need exactly 1",
+                ranges.len()
+            ),
+            0.0,
+            0.0,
+        ));
+    };
+    match kind {
+        ModelKind::Shc => second::<_, 3, 10, 11>(Shc::new, kind, inputs, ju, opts),
+        ModelKind::Maxwell => second::<_, 4, 13, 14>(Maxwell::new, kind, inputs, ju, opts),
+    }
+}
+
+/// The run of the system (x, u, S, S₂) and the derivatives at its separation.
+fn second<M, const N: usize, const D: usize, const E: usize>(
+    build: impl Fn(NdParams<H>) -> M,
+    kind: ModelKind,
+    inputs: &Inputs<Interval>,
+    ju: usize,
+    opts: &TaylorOptions,
+) -> Result<Curvature, RigorError>
+where
+    M: CollisionModel<H, N>,
+{
+    let lay = SecondOrder { n: N };
+    assert_eq!(D, 3 * N + 1);
+    let vals = inputs.values();
+    let (params, mut x0) = parameter_slots::<N, D>(&vals, &[ju], 1);
+    let c = |x: Interval| Rec::constant(x);
+    let (one, zero) = (<Interval as Real>::one(), <Interval as Real>::zero());
+    let hyper = |a: Rec<Interval>, b: Rec<Interval>, d: Rec<Interval>| H {
+        v: Dual {
+            v: a,
+            d: [b.clone()],
+        },
+        d: [Dual { v: b, d: [d] }],
+    };
+    let tape = Tape::<Interval, D>::record_with(params, |v| {
+        let hv: Vec<H> = (0..vals.len())
+            .map(|i| {
+                if i == ju {
+                    hyper(v[lay.u()].clone(), c(one), c(zero))
+                } else {
+                    H::constant(Dual::constant(c(vals[i])))
+                }
+            })
+            .collect();
+        let nd = inputs
+            .with_values(hv)
+            .nd(kind)
+            .expect("validated as intervals");
+        let m = build(nd);
+        let xs: [H; N] =
+            std::array::from_fn(|i| hyper(v[i].clone(), v[lay.s(i)].clone(), v[lay.s2(i)].clone()));
+        let f = m.field(&xs);
+        let (force, vel) = (m.force(&xs), m.velocity(&xs));
+        let mut o: Vec<Rec<Interval>> = f.iter().map(|q| q.v.v.clone()).collect();
+        o.push(c(zero));
+        o.extend(f.iter().map(|q| q.v.d[0].clone()));
+        o.extend(f.iter().map(|q| q.d[0].d[0].clone()));
+        // outputs D.. : F, V, F_u, V_u, F_uu, V_uu
+        o.extend([
+            force.v.v.clone(),
+            vel.v.v.clone(),
+            force.v.d[0].clone(),
+            vel.v.d[0].clone(),
+            force.d[0].d[0].clone(),
+            vel.d[0].d[0].clone(),
+        ]);
+        o
+    })
+    .with_second_order(lay);
+    if let Some(j) = tape.jump_off_the_kinks() {
+        return Err(fail(
+            &format!(
+                "the field's derivative jumps where state component {j} crosses 0 (an exponent 1, \
+                 e.g. n = 1): the second derivatives are not carried across it"
+            ),
+            0.0,
+            0.0,
+        ));
+    }
+    model_start(
+        &build,
+        kind,
+        inputs,
+        |x| H::constant(Dual::constant(Rec::constant(x))),
+        |s| *s.v.v.value(),
+        &mut x0,
+    )?;
+    let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
+    let in_time = at_separation(&tape, &flow, &ev, ju, zero_time(), flow.len());
+    // the branch points crossed in their variables (the floor ∝ w^(q−1) of the crossings at
+    // fixed times gone): both are enclosures, their intersection is
+    let tb = through_branches::<N, D, E>(&tape, flow, ev, ju, opts);
+    match (in_time, tb) {
+        (Ok(a), Ok(b)) => a.meet(&b).ok_or_else(|| {
+            fail(
+                "the two enclosures of the second derivatives are disjoint",
+                0.0,
+                0.0,
+            )
+        }),
+        (Ok(a), Err(_)) => Ok(a),
+        (Err(_), Ok(b)) => Ok(b),
+        (Err(e), Err(_)) => Err(e),
+    }
+}
+
+fn zero_time() -> Interval {
+    Interval::try_from((0.0, 0.0)).unwrap()
+}
+
+/// The run again from before each branch point it crossed at fixed times (after the start's),
+/// across it in its variable ([`crossing`]), and on from the common time after it.
+fn through_branches<const N: usize, const D: usize, const E: usize>(
+    tape: &Tape<Interval, D>,
+    mut flow: Flow<D, Interval>,
+    mut ev: SeparationEvent<D, Interval>,
+    ju: usize,
+    opts: &TaylorOptions,
+) -> Result<Curvature, RigorError> {
+    let co = crossing::CrossingOptions::default();
+    let (mut t_off, mut steps) = (zero_time(), 0);
+    for _ in 0..MAX_CROSSINGS {
+        // (only before the separation: [0, inf T_s) is proved free of it)
+        let Some((j, t_a, xa)) = crossing::next_branch(tape, &flow, N, ev.ts.inf(), &co) else {
+            return at_separation(tape, &flow, &ev, ju, t_off, steps + flow.len());
+        };
+        let c = crossing::cross::<D, E>(tape, N, j, t_a, &xa, opts, &co)?;
+        steps += flow.pieces.iter().take_while(|p| p.t1() <= t_a).count() + c.steps;
+        t_off += Interval::try_from((c.t1, c.t1)).unwrap();
+        (flow, ev) = integrate_system(tape, c.x1, N, opts)?;
+    }
+    Err(fail(
+        "more branch points than crossings allowed",
+        ev.ts.sup(),
+        ev.ts.wid(),
+    ))
+}
+
+/// The most branch points crossed in their variables in one run.
+const MAX_CROSSINGS: usize = 8;
+
+impl Curvature {
+    /// The intersection of two enclosures of the same quantities (`None` if they are
+    /// disjoint: one of them would be wrong).
+    fn meet(&self, o: &Self) -> Option<Self> {
+        let m = Self {
+            input: self.input,
+            ts: self.ts.intersection(o.ts),
+            e: self.e.intersection(o.e),
+            ts1: self.ts1.intersection(o.ts1),
+            e1: self.e1.intersection(o.e1),
+            ts2: self.ts2.intersection(o.ts2),
+            e2: self.e2.intersection(o.e2),
+            steps: self.steps + o.steps,
+        };
+        let all = [m.ts, m.e, m.ts1, m.e1, m.ts2, m.e2];
+        all.iter().all(|x| !x.is_empty()).then_some(m)
+    }
+}
+
+/// The implicit function theorem twice at the separation (module doc), every factor over the
+/// event's box, the first-order ones tightened by their time-centred forms about the middle
+/// T_m of [T_s]: q(T_s) ∈ q(Φ(T_m)) + q′(Φ([T_s]))·([T_s] − T_m).
+fn at_separation<const D: usize>(
+    tape: &Tape<Interval, D>,
+    flow: &Flow<D, Interval>,
+    ev: &SeparationEvent<D, Interval>,
+    input: usize,
+    t_off: Interval,
+    steps: usize,
+) -> Result<Curvature, RigorError> {
+    let no_jet = || {
+        fail(
+            "no second-order jet over the separation's box",
+            ev.ts.sup(),
+            ev.ts.wid(),
+        )
+    };
+    let mut ws = Workspace::default();
+    tape.jet(&ev.state, 2, &mut ws).map_err(|_| no_jet())?;
+    let o = tape.eval(&ev.state);
+    let tm = ev.ts.mid();
+    let dt = ev.ts - Interval::try_from((tm, tm)).unwrap();
+    let at_m = flow.enclose(tm);
+    let om = at_m.as_ref().map(|s| tape.eval(s));
+    let mut ws_m = Workspace::default();
+    let jet_m = at_m
+        .as_ref()
+        .is_some_and(|s| tape.jet(s, 1, &mut ws_m).is_ok());
+    let coef = |j: usize, k: usize| tape.output_coef(&ws, 2, D + j, k);
+    // output D + j at T_s, and its time derivative
+    let value = |j: usize| match &om {
+        Some(om) => (om[D + j] + coef(j, 1) * dt).intersection(o[D + j]),
+        None => o[D + j],
+    };
+    let rate = |j: usize| {
+        let whole = coef(j, 1);
+        if jet_m {
+            (tape.output_coef(&ws_m, 1, D + j, 1) + coef(j, 2).mul_int(2) * dt).intersection(whole)
+        } else {
+            whole
+        }
+    };
+    // (F, V, F_u, V_u, F_uu, V_uu) = outputs D + 0..6
+    let (f, v) = (o[D], o[D + 1]);
+    let (g_t, h_t) = (rate(0), rate(1));
+    let (g_tt, h_tt) = (coef(0, 2).mul_int(2), coef(1, 2).mul_int(2));
+    let (g_u, h_u, g_uu, h_uu) = (value(2), value(3), value(4), value(5));
+    let (g_ut, h_ut) = (rate(2), rate(3));
+    // T′, T″ of the crossing of the function c (F or V) whose zero is the separation
+    let implicit =
+        |c_u: Interval, c_t: Interval, c_uu: Interval, c_ut: Interval, c_tt: Interval| {
+            let t1 = -c_u / c_t;
+            let t2 = -(c_uu + c_ut.mul_int(2) * t1 + c_tt * t1 * t1) / c_t;
+            (t1, t2)
+        };
+    let zero = <Interval as Real>::zero();
+    let (ts1, ts2, e1, e2) = if v.inf() > 0.0 && g_t.sup() < 0.0 {
+        // F = 0 crossed downwards with V > 0
+        let (t1, t2) = implicit(g_u, g_t, g_uu, g_ut, g_tt);
+        let e1 = h_u + h_t * t1;
+        let e2 = h_uu + h_ut.mul_int(2) * t1 + h_tt * t1 * t1 + h_t * t2;
+        (t1, t2, e1, e2)
+    } else if f.sup() < 0.0 && h_t.inf() > 0.0 {
+        // V = 0 crossed upwards with F < 0: e ≡ 0
+        let (t1, t2) = implicit(h_u, h_t, h_uu, h_ut, h_tt);
+        (t1, t2, zero, zero)
+    } else {
+        return Err(fail(
+            "the separation's crossing is not transversal over the whole range",
+            ev.ts.sup(),
+            ev.ts.wid(),
+        ));
+    };
+    let bounded = [ts1, ts2, e1, e2]
+        .iter()
+        .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite());
+    if !bounded {
+        return Err(no_jet());
+    }
+    Ok(Curvature {
+        input,
+        ts: ev.ts + t_off,
+        e: ev.e,
+        ts1,
+        e1,
+        ts2,
+        e2,
+        steps,
+    })
+}
