@@ -22,12 +22,12 @@
 //! e(v) − L(v) ∈ [e″]·(v − v_k)(v − v_{k+1})/2 between proved point values (the band at a
 //! thickness far below the first-order form's, issue #32 item 4), convexity over a range.
 
-use super::sets::{Inputs, is_range, model_start, param_error, parameter_slots};
+use super::sets::{AtEvent, Inputs, is_range, model_start, param_error, parameter_slots};
 use crate::arith::Real;
 use crate::arith::jet::dual::Dual;
 use crate::engines::taylor::crossing;
 use crate::engines::taylor::rec::Rec;
-use crate::engines::taylor::tape::{SecondOrder, Tape, Workspace};
+use crate::engines::taylor::tape::{SecondOrder, Tape};
 use crate::engines::taylor::{Flow, RigorError, SeparationEvent, TaylorOptions, integrate_system};
 use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use inari::Interval;
@@ -251,31 +251,13 @@ fn at_separation<const D: usize>(
             ev.ts.wid(),
         )
     };
-    let mut ws = Workspace::default();
-    tape.jet(&ev.state, 2, &mut ws).map_err(|_| no_jet())?;
-    let o = tape.eval(&ev.state);
-    let tm = ev.ts.mid();
-    let dt = ev.ts - Interval::try_from((tm, tm)).unwrap();
-    let at_m = flow.enclose(tm);
-    let om = at_m.as_ref().map(|s| tape.eval(s));
-    let mut ws_m = Workspace::default();
-    let jet_m = at_m
-        .as_ref()
-        .is_some_and(|s| tape.jet(s, 1, &mut ws_m).is_ok());
-    let coef = |j: usize, k: usize| tape.output_coef(&ws, 2, D + j, k);
-    // output D + j at T_s, and its time derivative
-    let value = |j: usize| match &om {
-        Some(om) => (om[D + j] + coef(j, 1) * dt).intersection(o[D + j]),
-        None => o[D + j],
-    };
-    let rate = |j: usize| {
-        let whole = coef(j, 1);
-        if jet_m {
-            (tape.output_coef(&ws_m, 1, D + j, 1) + coef(j, 2).mul_int(2) * dt).intersection(whole)
-        } else {
-            whole
-        }
-    };
+    let at = AtEvent::new(tape, flow, ev);
+    if !at.jet {
+        return Err(no_jet());
+    }
+    let o = &at.o;
+    let coef = |j: usize, k: usize| at.coef(D + j, k);
+    let (value, rate) = (|j: usize| at.value(D + j), |j: usize| at.rate(D + j));
     // (F, V, F_u, V_u, F_uu, V_uu) = outputs D + 0..6
     let (f, v) = (o[D], o[D + 1]);
     let (g_t, h_t) = (rate(0), rate(1));

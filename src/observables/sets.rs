@@ -723,34 +723,10 @@ where
         &mut x0,
     )?;
     let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
-    // the derivatives over the event's state enclosure, each tightened by its time-centred
-    // form q(T_s) ∈ q(Φ(T_m)) + q′(Φ([T_s]))·([T_s] − T_m), T_m the middle of [T_s] (the box of
-    // Φ at the point T_m has no spread in time)
-    let mut ws = Workspace::default();
-    let o = tape.eval(&ev.state);
-    let tm = ev.ts.mid();
-    let dt = ev.ts - Interval::try_from((tm, tm)).unwrap();
-    let at_m = flow.enclose(tm);
-    let om = at_m.as_ref().map(|s| tape.eval(s));
-    let mut ws_m = Workspace::default();
-    let jet_m = at_m
-        .as_ref()
-        .is_some_and(|s| tape.jet(s, 1, &mut ws_m).is_ok());
-    let jet = tape.jet(&ev.state, 2, &mut ws).is_ok();
-    // the value of output j at T_s, and its time derivative
-    let value = |j: usize| match (&om, jet) {
-        (Some(om), true) => (om[j] + tape.output_coef(&ws, 2, j, 1) * dt).intersection(o[j]),
-        _ => o[j],
-    };
-    let rate = |j: usize| {
-        let whole = tape.output_coef(&ws, 2, j, 1);
-        if jet_m {
-            let c2 = tape.output_coef(&ws, 2, j, 2);
-            (tape.output_coef(&ws_m, 1, j, 1) + c2.mul_int(2) * dt).intersection(whole)
-        } else {
-            whole
-        }
-    };
+    // the derivatives over the event's state enclosure, each tightened by its time-centred form
+    let at = AtEvent::new(&tape, &flow, &ev);
+    let (o, jet) = (&at.o, at.jet);
+    let (value, rate) = (|j| at.value(j), |j| at.rate(j));
     let (df_du, dv_du) = (value(D + 2), value(D + 3));
     let slope = jet.then_some(()).and_then(|_| {
         let df_dt = rate(D);
@@ -785,7 +761,7 @@ where
             js[d],
             ev.ts.wid(),
             w(&ev.state),
-            at_m.as_ref().map(|s| w(s)).unwrap_or_default()
+            at.at_m.as_ref().map(|s| w(s)).unwrap_or_default()
         );
         if let Some(s) = &slope {
             eprintln!(
@@ -810,6 +786,80 @@ where
         },
         steps: flow.len(),
     })
+}
+
+/// The tape's outputs at the separation over the event's state box (every T_s of the set),
+/// each tightened by its time-centred form q(T_s) ∈ q(Φ(T_m)) + q′(Φ([T_s]))·([T_s] − T_m),
+/// T_m the middle of [T_s] (the box of Φ at the point T_m has no spread in time); the jet of
+/// order 2 over the event's box for the time derivatives.
+pub(super) struct AtEvent<'a, const D: usize> {
+    tape: &'a Tape<Interval, D>,
+    /// The outputs over the event's box.
+    pub o: Vec<Interval>,
+    ws: Workspace<Interval>,
+    /// The jet of order 2 over the event's box exists.
+    pub jet: bool,
+    /// The set at T_m.
+    pub at_m: Option<[Interval; D]>,
+    om: Option<Vec<Interval>>,
+    dt: Interval,
+    ws_m: Workspace<Interval>,
+    jet_m: bool,
+}
+
+impl<'a, const D: usize> AtEvent<'a, D> {
+    pub(super) fn new(
+        tape: &'a Tape<Interval, D>,
+        flow: &crate::engines::taylor::Flow<D, Interval>,
+        ev: &crate::engines::taylor::SeparationEvent<D, Interval>,
+    ) -> Self {
+        let mut ws = Workspace::default();
+        let o = tape.eval(&ev.state);
+        let tm = ev.ts.mid();
+        let dt = ev.ts - Interval::try_from((tm, tm)).unwrap();
+        let at_m = flow.enclose(tm);
+        let om = at_m.as_ref().map(|s| tape.eval(s));
+        let mut ws_m = Workspace::default();
+        let jet_m = at_m
+            .as_ref()
+            .is_some_and(|s| tape.jet(s, 1, &mut ws_m).is_ok());
+        let jet = tape.jet(&ev.state, 2, &mut ws).is_ok();
+        Self {
+            tape,
+            o,
+            ws,
+            jet,
+            at_m,
+            om,
+            dt,
+            ws_m,
+            jet_m,
+        }
+    }
+
+    /// The order-k coefficient in time of output j over the event's box (with the jet).
+    pub(super) fn coef(&self, j: usize, k: usize) -> Interval {
+        self.tape.output_coef(&self.ws, 2, j, k)
+    }
+
+    /// Output j at T_s.
+    pub(super) fn value(&self, j: usize) -> Interval {
+        match (&self.om, self.jet) {
+            (Some(om), true) => (om[j] + self.coef(j, 1) * self.dt).intersection(self.o[j]),
+            _ => self.o[j],
+        }
+    }
+
+    /// The time derivative of output j at T_s.
+    pub(super) fn rate(&self, j: usize) -> Interval {
+        let whole = self.coef(j, 1);
+        if self.jet_m {
+            (self.tape.output_coef(&self.ws_m, 1, j, 1) + self.coef(j, 2).mul_int(2) * self.dt)
+                .intersection(whole)
+        } else {
+            whole
+        }
+    }
 }
 
 /// The system (x, u_1, …, u_K) padded to D − N ≥ K parameter components (u̇ = 0): the hulls
