@@ -103,13 +103,20 @@ fn maxwell_dss_second_derivatives_meet_the_second_differences() {
 
 /// The band in the interpolation form at 1e-9 over a short range: thinner than the target,
 /// and at v0 between the nodes it holds e and T_s proved to 30 digits (compared as rationals).
-fn band_holds_precise_values(case: usize, lo: f64, hi: f64, probes: &[f64]) {
+/// `first_width`: None for the default (several pieces, walked in segments).
+fn band_holds_precise_values(
+    case: usize,
+    lo: f64,
+    hi: f64,
+    first_width: Option<f64>,
+    probes: &[f64],
+) -> bwcl::observables::band_second::InterpBand {
     use bwcl::observables::band_second::{InterpOptions, prove_band_second};
     let (name, kind, base) = TABLE1[case];
     let b = NdParams::<Interval>::parse(kind, base).unwrap();
     let io = InterpOptions {
         thickness: 1e-9,
-        first_width: hi - lo,
+        first_width: first_width.unwrap_or(InterpOptions::default().first_width),
         ..InterpOptions::default()
     };
     let band = prove_band_second(kind, &b, lo, hi, &io, &TaylorOptions::default())
@@ -148,16 +155,44 @@ fn band_holds_precise_values(case: usize, lo: f64, hi: f64, probes: &[f64]) {
             r.ts[0].to_f64()
         );
     }
+    band
 }
 
 #[test]
 fn a_maxwell_dsa_band_at_1e_9_holds_precise_values_between_its_nodes() {
-    band_holds_precise_values(3, 0.9375, 1.0625, &[0.94, 0.99, 1.0001, 1.0623]);
+    band_holds_precise_values(
+        3,
+        0.9375,
+        1.0625,
+        Some(0.125),
+        &[0.94, 0.99, 1.0001, 1.0623],
+    );
 }
 
 #[test]
 fn a_shc_dss_band_at_1e_9_holds_precise_values_between_its_nodes() {
-    band_holds_precise_values(0, 0.9375, 1.0625, &[0.94, 0.99, 1.0001, 1.0623]);
+    band_holds_precise_values(
+        0,
+        0.9375,
+        1.0625,
+        Some(0.125),
+        &[0.94, 0.99, 1.0001, 1.0623],
+    );
+}
+
+/// At low speeds with the default options: the range cut into segments walked in parallel,
+/// each piece's width from its neighbour's nodes; the pieces still share their ends and cover
+/// the range, and the band holds 30-digit values (one probe near a segment's end).
+#[test]
+fn a_band_walked_in_segments_covers_its_range_and_holds_precise_values() {
+    let band = band_holds_precise_values(0, 0.1, 0.16, None, &[0.1002, 0.1299, 0.1597]);
+    let widths: Vec<f64> = band.pieces.iter().map(|p| p.v0_hi() - p.v0_lo()).collect();
+    assert!(widths.len() >= 4, "{widths:?}");
+    // (the widths adapt: not one cut for all)
+    let (min, max) = widths
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), &w| (a.min(w), b.max(w)));
+    assert!(max > 1.2 * min, "{widths:?}");
 }
 
 /// SHC DSA has n = 1: |Z|^n is |Z|, whose derivative sgn Z jumps where Z = 0 (not a kink of

@@ -881,7 +881,7 @@ pub struct CorArgs {
     /// (1e-9 and below): e and T_s proved at nodes, e″ and T_s″ over each piece by the second
     /// variational system; one row per node interval [v0_lo, v0_hi] with e(v0) ∈
     /// e_at_lo·(v0_hi − v0)/h + e_at_hi·(v0 − v0_lo)/h − d2e·(v0 − v0_lo)(v0_hi − v0)/2
-    /// (h = v0_hi − v0_lo), T_s likewise, and the thickness. [0.1, 5] at 1e-9: ≈ 20 s on 2
+    /// (h = v0_hi − v0_lo), T_s likewise, and the thickness. [0.1, 5] at 1e-9: ≈ 15 s on 2
     /// CPUs (the first-order form: minutes).
     #[arg(long, requires = "band")]
     pub second_order: bool,

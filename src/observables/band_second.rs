@@ -19,8 +19,10 @@
 //! (benches/RESULTS.md).
 //!
 //! The nodes per piece come from the target: wid[e″]·h²/8 ≤ 0.95·target (the rest for the
-//! nodes' own widths, ≈ 1e-12: their runs' tolerance per step is 10⁻⁴ of the target); a piece needing more than [`MAX_NODES`] intervals, or whose run
-//! fails, is halved.
+//! nodes' own widths, ≈ 1e-12: their runs' tolerance per step is 10⁻⁴ of the target). The
+//! range is cut into segments walked in parallel ([`prove_band_second`]); along a segment each
+//! piece's width comes from the nodes the last one needed (aimed at [`AIM_NODES`]), and a
+//! piece needing more than [`MAX_NODES`] intervals, or whose run fails, is tried narrower.
 
 use super::band::Progress;
 use super::curvature::curvature_over_range;
@@ -30,14 +32,15 @@ use crate::models::{ModelKind, NdParams};
 use inari::Interval;
 use rayon::prelude::*;
 
-/// Most node intervals on one piece (beyond, the piece is halved: its [e″] narrows ∝ width).
+/// Most node intervals on one piece (beyond, the piece is tried narrower: its [e″] narrows at
+/// least ∝ width).
 pub const MAX_NODES: usize = 128;
 
 /// A piece in the interpolation form (module doc).
 #[derive(Clone, Debug)]
 pub struct InterpPiece {
     /// The nodes v_k (exact doubles, the first and last the piece's ends) with e(v_k), T_s(v_k).
-    pub nodes: Vec<(f64, Interval, Interval)>,
+    pub nodes: Vec<Node>,
     /// e″ and T_s″ over the whole piece.
     pub e2: Interval,
     pub ts2: Interval,
@@ -150,8 +153,8 @@ impl InterpBand {
     }
 }
 
-/// The band's options: the target thickness, the first pieces' width, the narrowest piece, a
-/// progress display.
+/// The band's options: the target thickness, the first pieces' width (at v0 ≥ 1; ∝ v0 below,
+/// [`first_guess`]), the narrowest piece, a progress display.
 #[derive(Clone, Debug)]
 pub struct InterpOptions {
     pub thickness: f64,
@@ -161,8 +164,7 @@ pub struct InterpOptions {
     pub progress: Option<Progress>,
 }
 
-/// Measured on [0.1, 5] at 1e-9 (benches/RESULTS.md): pieces of 0.05 first, halved where
-/// [e″] needs more than [`MAX_NODES`] intervals.
+/// Measured on [0.1, 5] at 1e-9 (benches/RESULTS.md): pieces of 0.05·min(v0, 1) first.
 impl Default for InterpOptions {
     fn default() -> Self {
         Self {
@@ -188,15 +190,29 @@ fn point_run(
     Ok((e, ts))
 }
 
-/// One piece [lo, hi]: the range run, then the nodes (`Ok(None)`: the piece must be halved).
+/// What one piece's attempt gave.
+enum Tried {
+    /// The piece, with its number of node intervals.
+    Proved(InterpPiece, usize),
+    /// Its [e″] needs this many node intervals, more than [`MAX_NODES`].
+    TooWide(f64),
+    /// Its run failed (or the nodes' own widths exceed the target).
+    Failed,
+}
+
+/// A node: v0 (an exact double) with e(v0) and T_s(v0).
+type Node = (f64, Interval, Interval);
+
+/// One piece [lo, hi]: the range run, then the nodes, `known` one of them proved already (an
+/// error only where the piece may not be cut further, or the time ran out).
 fn prove_piece(
     kind: ModelKind,
     base: &NdParams<Interval>,
-    lo: f64,
-    hi: f64,
+    (lo, hi): (f64, f64),
+    known: Option<Node>,
     io: &InterpOptions,
     opts: &TaylorOptions,
-) -> Result<Option<(InterpPiece, usize)>, RigorError> {
+) -> Result<Tried, RigorError> {
     let inputs = Inputs::Base {
         base: base.clone(),
         v0: Interval::try_from((lo, hi)).map_err(|_| RigorError {
@@ -208,7 +224,7 @@ fn prove_piece(
     let c = match curvature_over_range(kind, &inputs, opts) {
         Ok(c) => c,
         Err(e) if e.out_of_time() || hi - lo < 2.0 * io.min_width => return Err(e),
-        Err(_) => return Ok(None),
+        Err(_) => return Ok(Tried::Failed),
     };
     // nodes: wid[e″]·h²/8 ≤ 0.95·target (the rest for the nodes' own widths, ≈ 1e-12)
     let w2 = width_up(c.e2);
@@ -223,7 +239,7 @@ fn prove_piece(
                 width: w2,
             })
         } else {
-            Ok(None)
+            Ok(Tried::TooWide(m))
         };
     }
     let m = m as usize;
@@ -239,11 +255,15 @@ fn prove_piece(
         })
         .collect();
     if vs.windows(2).any(|w| w[0] >= w[1]) {
-        return Ok(None);
+        return Ok(Tried::Failed);
     }
     let nodes = vs
         .iter()
-        .map(|&v| point_run(kind, base, v, &node_opts).map(|(e, ts)| (v, e, ts)))
+        .map(|&v| match known {
+            // (the last piece's end node, proved already)
+            Some(n) if n.0 == v => Ok(n),
+            _ => point_run(kind, base, v, &node_opts).map(|(e, ts)| (v, e, ts)),
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let p = InterpPiece {
         nodes,
@@ -259,15 +279,117 @@ fn prove_piece(
                 width: p.thickness(),
             })
         } else {
-            Ok(None)
+            Ok(Tried::Failed)
         };
     }
-    Ok(Some((p, m + 1)))
+    Ok(Tried::Proved(p, m))
+}
+
+/// The width a piece at v0 is first tried with: `first_width`, ∝ v0 below v0 = 1 (measured on
+/// the Table 1 sets: the widths that settle are ≈ 0.05·v0 there, benches/RESULTS.md).
+fn first_guess(io: &InterpOptions, v: f64) -> f64 {
+    io.first_width * v.clamp(0.1, 1.0)
+}
+
+/// The segments [a, b] is cut into, walked in parallel: about equal numbers of pieces by
+/// [`first_guess`], at most [`SEGMENTS`], none with fewer than 3 pieces of the guess (their ends
+/// short decimals: printed exactly).
+fn segments(io: &InterpOptions, a: f64, b: f64) -> Vec<f64> {
+    // the guessed number of pieces up to v: ∫ dv / first_guess(v), by the midpoint rule
+    const GRID: usize = 4096;
+    let h = (b - a) / GRID as f64;
+    let cum: Vec<f64> = std::iter::once(0.0)
+        .chain((0..GRID).scan(0.0, |c, i| {
+            *c += h / first_guess(io, a + (i as f64 + 0.5) * h);
+            Some(*c)
+        }))
+        .collect();
+    let total = cum[GRID];
+    let k = ((total / 3.0).ceil() as usize).clamp(1, SEGMENTS);
+    let mut out = vec![a];
+    for i in 1..k {
+        let target = total * i as f64 / k as f64;
+        let g = cum.partition_point(|&c| c < target).min(GRID);
+        let x = a + g as f64 * h;
+        let c = super::sets::short_centre(x - h, x + h);
+        if c > *out.last().expect("a") && c < b {
+            out.push(c);
+        }
+    }
+    out.push(b);
+    out
+}
+
+/// At most this many segments (the runs' parallelism; fixed, so that the pieces do not
+/// depend on the number of threads).
+pub const SEGMENTS: usize = 16;
+
+/// The node intervals a piece is aimed at. A range run costs ≈ 33 point runs (SHC DSS,
+/// Maxwell DSA: 85–120 ms against 2.5–3 ms); were [e″] ∝ width, the work per unit of v0,
+/// (C_range + m·C_point)/w with m ∝ w^(3/2), would be least at m = 2·C_range/C_point ≈ 64, but
+/// [e″] grows faster on wide pieces: measured on [0.1, 5] at 1e-9 (benches/RESULTS.md), 24,
+/// 32, 40, 64 gave 15.1, 14.8, 15.1, 17.1 s (SHC DSS) and 16.3, 15.5, 15.3, 15.3 s (Maxwell
+/// DSA).
+pub const AIM_NODES: f64 = 40.0;
+
+/// The next width from a piece of width `w` that needed `m` node intervals: m ∝ w^(3/2),
+/// aimed at [`AIM_NODES`], the change clamped to [lo, hi].
+fn next_width(w: f64, m: f64, lo: f64, hi: f64) -> f64 {
+    w * (AIM_NODES / m.max(1.0)).powf(2.0 / 3.0).clamp(lo, hi)
+}
+
+/// One segment [s0, s1] walked from its left end, each piece's width from the last one's
+/// nodes ([`next_width`]); the pieces in order, and the range runs made.
+fn walk(
+    kind: ModelKind,
+    base: &NdParams<Interval>,
+    (s0, s1): (f64, f64),
+    io: &InterpOptions,
+    opts: &TaylorOptions,
+    settled: &dyn Fn(f64),
+) -> Result<(Vec<InterpPiece>, usize, usize), RigorError> {
+    let (mut pieces, mut range_runs, mut point_runs) = (Vec::new(), 0, 0);
+    let (mut lo, mut w) = (s0, first_guess(io, s0));
+    while lo < s1 {
+        if opts.out_of_time() {
+            return Err(RigorError {
+                reason: crate::engines::taylor::DEADLINE.into(),
+                t: 0.0,
+                width: 0.0,
+            });
+        }
+        // (no sliver left at the end: the last piece takes it)
+        let hi = if lo + 1.25 * w >= s1 {
+            s1
+        } else {
+            let c = super::sets::short_centre(lo + 0.9 * w, lo + 1.1 * w);
+            if c > lo && c < s1 { c } else { lo + w }
+        };
+        range_runs += 1;
+        w = hi - lo;
+        let known = pieces
+            .last()
+            .map(|p: &InterpPiece| p.nodes[p.nodes.len() - 1]);
+        match prove_piece(kind, base, (lo, hi), known, io, opts)? {
+            Tried::Proved(p, m) => {
+                point_runs += m + usize::from(known.is_none());
+                pieces.push(p);
+                settled(hi - lo);
+                lo = hi;
+                w = next_width(w, m as f64, 0.5, 2.0);
+            }
+            Tried::TooWide(m) => w = next_width(w, m, 0.125, 0.5),
+            Tried::Failed => w /= 2.0,
+        }
+        w = w.max(io.min_width);
+    }
+    Ok((pieces, range_runs, point_runs))
 }
 
 /// Proves the band of e (and T_s) over v0 ∈ [a, b] for base set `base` in the interpolation
-/// form (module doc), thickness at most `io.thickness`; the pieces of a round run in parallel.
-/// Fails with the first piece that cannot be proved down to `io.min_width`.
+/// form (module doc), thickness at most `io.thickness`: [a, b] cut into [`segments`], walked in
+/// parallel, each piece's width adapted to the nodes its neighbour needed ([`walk`]). Fails
+/// with the first piece that cannot be proved down to `io.min_width`.
 pub fn prove_band_second(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -276,55 +398,30 @@ pub fn prove_band_second(
     io: &InterpOptions,
     opts: &TaylorOptions,
 ) -> Result<InterpBand, RigorError> {
-    let n = ((b - a) / io.first_width).ceil().clamp(1.0, 1e6) as usize;
-    let mut todo: Vec<(f64, f64)> = super::band::short_cuts(a, b, n)
-        .windows(2)
-        .map(|w| (w[0], w[1]))
-        .collect();
-    let mut done: Vec<InterpPiece> = Vec::new();
-    let (mut range_runs, mut point_runs) = (0, 0);
-    let settled = std::sync::Mutex::new((0.0f64, 0usize));
-    while !todo.is_empty() {
-        if opts.out_of_time() {
-            return Err(RigorError {
-                reason: crate::engines::taylor::DEADLINE.into(),
-                t: 0.0,
-                width: 0.0,
-            });
+    let cuts = segments(io, a, b);
+    let state = std::sync::Mutex::new((0.0f64, 0usize));
+    let settled = |dw: f64| {
+        if let Some(Progress(f)) = &io.progress {
+            // (one thread at a time, so that the shares told never go back)
+            let mut s = state.lock().expect("no panic");
+            s.0 += dw;
+            s.1 += 1;
+            f((s.0 / (b - a)).clamp(0.0, 1.0), s.1);
         }
-        let results: Vec<_> = todo
-            .par_iter()
-            .map(|&(lo, hi)| {
-                let r = prove_piece(kind, base, lo, hi, io, opts);
-                if let (Some(Progress(f)), Ok(Some(_))) = (&io.progress, &r) {
-                    // (one thread at a time, so that the shares told never go back)
-                    let mut s = settled.lock().expect("no panic");
-                    s.0 += hi - lo;
-                    s.1 += 1;
-                    f((s.0 / (b - a)).clamp(0.0, 1.0), s.1);
-                }
-                (lo, hi, r)
-            })
-            .collect();
-        todo.clear();
-        for (lo, hi, r) in results {
-            range_runs += 1;
-            match r? {
-                Some((p, points)) => {
-                    point_runs += points;
-                    done.push(p);
-                }
-                None => {
-                    let cut = super::band::short_cuts(lo, hi, 2);
-                    todo.extend(cut.windows(2).map(|w| (w[0], w[1])));
-                }
-            }
-        }
+    };
+    let walked: Vec<_> = cuts
+        .par_windows(2)
+        .map(|w| walk(kind, base, (w[0], w[1]), io, opts, &settled))
+        .collect::<Result<_, _>>()?;
+    let mut band = InterpBand {
+        pieces: Vec::new(),
+        range_runs: 0,
+        point_runs: 0,
+    };
+    for (pieces, r, p) in walked {
+        band.pieces.extend(pieces);
+        band.range_runs += r;
+        band.point_runs += p;
     }
-    done.sort_by(|x, y| x.v0_lo().total_cmp(&y.v0_lo()));
-    Ok(InterpBand {
-        pieces: done,
-        range_runs,
-        point_runs,
-    })
+    Ok(band)
 }

@@ -28,7 +28,10 @@ use crate::arith::jet::dual::Dual;
 use crate::engines::taylor::crossing;
 use crate::engines::taylor::rec::Rec;
 use crate::engines::taylor::tape::{SecondOrder, Tape};
-use crate::engines::taylor::{Flow, RigorError, SeparationEvent, TaylorOptions, integrate_system};
+use crate::engines::taylor::{
+    Ended, Flow, RigorError, SeparationEvent, TaylorOptions, integrate_system,
+    integrate_system_until,
+};
 use crate::models::{CollisionModel, Maxwell, ModelKind, NdParams, Shc};
 use inari::Interval;
 
@@ -160,22 +163,14 @@ where
         |s| *s.v.v.value(),
         &mut x0,
     )?;
-    let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
-    let in_time = at_separation(&tape, &flow, &ev, ju, zero_time(), flow.len());
     // the branch points crossed in their variables (the floor ∝ w^(q−1) of the crossings at
-    // fixed times gone): both are enclosures, their intersection is
-    let tb = through_branches::<N, D, E>(&tape, flow, ev, ju, opts);
-    match (in_time, tb) {
-        (Ok(a), Ok(b)) => a.meet(&b).ok_or_else(|| {
-            fail(
-                "the two enclosures of the second derivatives are disjoint",
-                0.0,
-                0.0,
-            )
-        }),
-        (Ok(a), Err(_)) => Ok(a),
-        (Err(_), Ok(b)) => Ok(b),
-        (Err(e), Err(_)) => Err(e),
+    // fixed times gone); where that fails, the run in time alone
+    match through_branches::<N, D, E>(&tape, x0, ju, opts) {
+        Err(e) if !e.out_of_time() => {
+            let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
+            at_separation(&tape, &flow, &ev, ju, zero_time(), flow.len())
+        }
+        r => r,
     }
 }
 
@@ -183,55 +178,44 @@ fn zero_time() -> Interval {
     Interval::try_from((0.0, 0.0)).unwrap()
 }
 
-/// The run again from before each branch point it crossed at fixed times (after the start's),
-/// across it in its variable ([`crossing`]), and on from the common time after it.
+/// The run from `x0`, each branch point it meets after the start's crossed in its variable
+/// ([`crossing`]): the time run stops at the first piece that holds one, the set is carried
+/// across it from t_a, and the run goes on from the common time after it.
 fn through_branches<const N: usize, const D: usize, const E: usize>(
     tape: &Tape<Interval, D>,
-    mut flow: Flow<D, Interval>,
-    mut ev: SeparationEvent<D, Interval>,
+    x0: [Interval; D],
     ju: usize,
     opts: &TaylorOptions,
 ) -> Result<Curvature, RigorError> {
     let co = crossing::CrossingOptions::default();
-    let (mut t_off, mut steps) = (zero_time(), 0);
-    for _ in 0..MAX_CROSSINGS {
-        // (only before the separation: [0, inf T_s) is proved free of it)
-        let Some((j, t_a, xa)) = crossing::next_branch(tape, &flow, N, ev.ts.inf(), &co) else {
-            return at_separation(tape, &flow, &ev, ju, t_off, steps + flow.len());
+    let (mut x, mut t_off, mut steps) = (x0, zero_time(), 0);
+    for k in 0..=MAX_CROSSINGS {
+        let mut watch = crossing::BranchWatch::new(tape, N, &co);
+        let mut found = None;
+        let mut stop = |flow: &Flow<D, Interval>, cleared: f64| {
+            // (only before the separation: [0, cleared) is proved free of it)
+            found = found.or_else(|| watch.next(flow, cleared));
+            k < MAX_CROSSINGS && found.is_some()
         };
+        let (flow, (j, t_a)) = match integrate_system_until(tape, x, N, opts, &mut stop)? {
+            Ended::Separated(flow, ev) => {
+                return at_separation(tape, &flow, &ev, ju, t_off, steps + flow.len());
+            }
+            Ended::Stopped { flow, .. } => (flow, found.expect("stopped at a branch point")),
+        };
+        let xa = flow
+            .enclose(t_a)
+            .ok_or_else(|| fail("no set before the branch point", t_a, 0.0))?;
         let c = crossing::cross::<D, E>(tape, N, j, t_a, &xa, opts, &co)?;
         steps += flow.pieces.iter().take_while(|p| p.t1() <= t_a).count() + c.steps;
         t_off += Interval::try_from((c.t1, c.t1)).unwrap();
-        (flow, ev) = integrate_system(tape, c.x1, N, opts)?;
+        x = c.x1;
     }
-    Err(fail(
-        "more branch points than crossings allowed",
-        ev.ts.sup(),
-        ev.ts.wid(),
-    ))
+    unreachable!("the last run does not stop")
 }
 
 /// The most branch points crossed in their variables in one run.
 const MAX_CROSSINGS: usize = 8;
-
-impl Curvature {
-    /// The intersection of two enclosures of the same quantities (`None` if they are
-    /// disjoint: one of them would be wrong).
-    fn meet(&self, o: &Self) -> Option<Self> {
-        let m = Self {
-            input: self.input,
-            ts: self.ts.intersection(o.ts),
-            e: self.e.intersection(o.e),
-            ts1: self.ts1.intersection(o.ts1),
-            e1: self.e1.intersection(o.e1),
-            ts2: self.ts2.intersection(o.ts2),
-            e2: self.e2.intersection(o.e2),
-            steps: self.steps + o.steps,
-        };
-        let all = [m.ts, m.e, m.ts1, m.e1, m.ts2, m.e2];
-        all.iter().all(|x| !x.is_empty()).then_some(m)
-    }
-}
 
 /// The implicit function theorem twice at the separation (module doc), every factor over the
 /// event's box, the first-order ones tightened by their time-centred forms about the middle

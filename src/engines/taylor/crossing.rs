@@ -80,41 +80,76 @@ fn branch_components<const D: usize>(tape: &Tape<Interval, D>, n_state: usize) -
         .collect()
 }
 
-/// The first branch point the flow crosses before `before` (the separation's earliest time)
-/// once every branch component has left 0 (the start's double branch point is not crossed
-/// here): its component j and the last piece end t_a before it where the whole set is far
-/// enough from it, with the set there.
-pub fn next_branch<const D: usize>(
-    tape: &Tape<Interval, D>,
-    flow: &Flow<D, Interval>,
-    n_state: usize,
-    before: f64,
-    co: &CrossingOptions,
-) -> Option<(usize, f64, [Interval; D])> {
-    let comps = branch_components(tape, n_state);
-    let far = |x: &Interval| x.mig() >= co.near.max(co.spread * x.wid());
-    let mut armed = false;
-    let mut last_far: Vec<Option<f64>> = vec![None; D];
-    for p in flow.pieces.iter().take_while(|p| p.t1() < before) {
-        let whole = p.enclose(&Interval::try_from((p.t0(), p.t1())).ok()?);
-        let end = p.enclose(&pt(p.t1()));
-        if !armed {
-            armed = comps.iter().all(|&j| whole[j].mig() > 0.0);
-            if !armed {
-                continue;
-            }
-        }
-        if let Some(&j) = comps.iter().find(|&&j| whole[j].contains(0.0)) {
-            let t_a = last_far[j]?;
-            return Some((j, t_a, flow.enclose(t_a)?));
-        }
-        for &j in &comps {
-            if far(&end[j]) {
-                last_far[j] = Some(p.t1());
-            }
+/// The first branch point a flow crosses, watched piece by piece as the flow grows (a run can
+/// stop there, [`super::integrate_system_until`]): once every branch component has left 0 (the
+/// start's double branch point is not crossed here), the first piece whose box holds 0 in a
+/// branch component j, among the pieces before `before` (the separation's earliest time);
+/// with the last piece end t_a before it where the whole set is far enough from 0 in j. Only
+/// that first crossing is reported (none if no piece end before it was far enough).
+pub struct BranchWatch {
+    comps: Vec<usize>,
+    armed: bool,
+    done: bool,
+    seen: usize,
+    last_far: Vec<Option<f64>>,
+    co: CrossingOptions,
+}
+
+impl BranchWatch {
+    pub fn new<const D: usize>(
+        tape: &Tape<Interval, D>,
+        n_state: usize,
+        co: &CrossingOptions,
+    ) -> Self {
+        Self {
+            comps: branch_components(tape, n_state),
+            armed: false,
+            done: false,
+            seen: 0,
+            last_far: vec![None; D],
+            co: *co,
         }
     }
-    None
+
+    /// The pieces of `flow` not looked at yet that end before `before`: the branch component j
+    /// and t_a of the first crossing (once).
+    pub fn next<const D: usize>(
+        &mut self,
+        flow: &Flow<D, Interval>,
+        before: f64,
+    ) -> Option<(usize, f64)> {
+        let co = self.co;
+        let far = |x: &Interval| x.mig() >= co.near.max(co.spread * x.wid());
+        while !self.done && self.seen < flow.pieces.len() {
+            let p = &flow.pieces[self.seen];
+            if p.t1() >= before {
+                return None;
+            }
+            self.seen += 1;
+            let Ok(span) = Interval::try_from((p.t0(), p.t1())) else {
+                self.done = true;
+                return None;
+            };
+            let whole = p.enclose(&span);
+            let end = p.enclose(&pt(p.t1()));
+            if !self.armed {
+                self.armed = self.comps.iter().all(|&j| whole[j].mig() > 0.0);
+                if !self.armed {
+                    continue;
+                }
+            }
+            if let Some(&j) = self.comps.iter().find(|&&j| whole[j].contains(0.0)) {
+                self.done = true;
+                return self.last_far[j].map(|t_a| (j, t_a));
+            }
+            for &j in &self.comps {
+                if far(&end[j]) {
+                    self.last_far[j] = Some(p.t1());
+                }
+            }
+        }
+        None
+    }
 }
 
 /// The box keeps the kinks off 0 and the separation condition false (module doc).

@@ -43,6 +43,31 @@ pub(super) fn integrate_tape<I: Enclosure, const N: usize>(
     n_state: usize,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
+    match integrate_tape_until(tape, x0, n_state, opts, &mut |_, _| false)? {
+        Ended::Separated(flow, ev) => Ok((flow, ev)),
+        Ended::Stopped { .. } => unreachable!("a test that never stops"),
+    }
+}
+
+/// Where a run of [`integrate_tape_until`] ended.
+pub enum Ended<const N: usize, I> {
+    /// At the separation event, proved.
+    Separated(Flow<N, I>, SeparationEvent<N, I>),
+    /// Where the caller's test said stop, after the flow's last piece; the separation condition
+    /// is proved to fail on [0, `cleared`).
+    Stopped { flow: Flow<N, I>, cleared: f64 },
+}
+
+/// The loop, with a test `stop(flow, cleared)` after every piece that did not end the run
+/// (`cleared` as in [`Ended::Stopped`]): the run ends there when it says so.
+#[allow(clippy::type_complexity)]
+pub(super) fn integrate_tape_until<I: Enclosure, const N: usize>(
+    tape: &Tape<I, N>,
+    x0: [I; N],
+    n_state: usize,
+    opts: &TaylorOptions,
+    stop: &mut dyn FnMut(&Flow<N, I>, f64) -> bool,
+) -> Result<Ended<N, I>, RigorError> {
     let mut run = Run::new(tape, x0, n_state, opts)?;
     for _ in 0..opts.max_steps {
         let w = run.check()?;
@@ -54,7 +79,15 @@ pub(super) fn integrate_tape<I: Enclosure, const N: usize>(
             None => run.low_order_step(w, spare)?,
         };
         if let Some(ev) = run.scan(out, w)? {
-            return Ok((run.flow, ev));
+            return Ok(Ended::Separated(run.flow, ev));
+        }
+        // (every piece is cleared unless a stretch is pending)
+        let cleared = run.pending.unwrap_or(run.t);
+        if stop(&run.flow, cleared) {
+            return Ok(Ended::Stopped {
+                flow: run.flow,
+                cleared,
+            });
         }
     }
     Err(RigorError {

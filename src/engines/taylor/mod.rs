@@ -41,13 +41,14 @@ pub mod window;
 
 pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
+pub use integrate::Ended;
 pub use options::{
     CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, TaylorOptions, UNDECIDABLE,
 };
 
 use crate::arith::Enclosure;
 use crate::models::CollisionModel;
-use integrate::integrate_tape;
+use integrate::{integrate_tape, integrate_tape_until};
 use tape::Tape;
 
 /// Integrates `model` from its initial state and encloses T_s and e.
@@ -106,5 +107,23 @@ pub fn integrate_system<I: Enclosure, const N: usize>(
         integrate_tape(tape, x0, n_state, opts)
     } else {
         rayon::scope(|_| integrate_tape(tape, x0, n_state, opts))
+    }
+}
+
+/// [`integrate_system`] with a test `stop(flow, cleared)` after every piece that did not end
+/// the run ([`Ended`]): e.g. a run up to the first branch point it crosses
+/// ([`crossing::BranchWatch`]).
+#[allow(clippy::type_complexity)]
+pub fn integrate_system_until<I: Enclosure, const N: usize>(
+    tape: &Tape<I, N>,
+    x0: [I; N],
+    n_state: usize,
+    opts: &TaylorOptions,
+    stop: &mut (dyn FnMut(&Flow<N, I>, f64) -> bool + Send),
+) -> Result<Ended<N, I>, RigorError> {
+    if rayon::current_thread_index().is_some() {
+        integrate_tape_until(tape, x0, n_state, opts, stop)
+    } else {
+        rayon::scope(|_| integrate_tape_until(tape, x0, n_state, opts, stop))
     }
 }
