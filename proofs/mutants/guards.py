@@ -214,6 +214,12 @@ GUARDS = [
      [("    let dt = (pt(t1) - xb[D]).sup();", "    let dt = (pt(t1) - xb[D]).inf();")],
      "the exit's lengths Δt ∈ [0, t₁ − t_b] for every member (the shortest taken)",
      ["--lib", "crossing"]),
+    # a window whose end no step length lands on (src/engines/taylor/window.rs, 2026-11-29)
+    ("window-landing", "src/engines/taylor/window.rs",
+     [("let (target, to_end) = landing(t, t1).ok_or_else",
+       "let (target, to_end) = end_length(t, t1).map(|h| (t1, h)).ok_or_else")],
+     "a window stops at a power of 2 on the way where no length lands on its end",
+     ["--lib", "window"]),
     ("second-order-jumps-off-kinks", "src/observables/curvature.rs",
      [("    if let Some(j) = tape.jump_off_the_kinks() {", "    if let Some(j) = None::<usize> {")],
      "a derivative that jumps off the kinks (n = 1: sgn Z) refuses the second-order form",

@@ -190,7 +190,9 @@ impl<const N: usize, I: Enclosure> Window<N, I> {
                     (h_surf, nearest) = (x[i].mig_f64() / f[i].mag_f64(), i);
                 }
             }
-            let to_end = end_length(t, t1).ok_or_else(|| {
+            // (the end of this stretch: t1, or a power of 2 on the way where no length lands
+            // on t1 from t)
+            let (target, to_end) = landing(t, t1).ok_or_else(|| {
                 fail(
                     format!("no step length from T = {t} lands on {t1} (an internal error)"),
                     t,
@@ -216,7 +218,7 @@ impl<const N: usize, I: Enclosure> Window<N, I> {
                 // closer to t1 than any Taylor step can advance (a few ulps: a previous step
                 // ended just short of t1): a low-order step to t1 itself, checked to keep
                 // every switching component's sign
-                let o = step::low_order_to(tape, t, &x, t1)
+                let o = step::low_order_to(tape, t, &x, target)
                     .filter(|o| {
                         tape.switching()
                             .iter()
@@ -225,7 +227,7 @@ impl<const N: usize, I: Enclosure> Window<N, I> {
                     .ok_or_else(|| {
                         fail(
                             format!(
-                                "{NO_STEP}: no low-order step over the last {to_end:e} to T = {t1}"
+                                "{NO_STEP}: no low-order step over the last {to_end:e} to T = {target}"
                             ),
                             t,
                             &x,
@@ -328,9 +330,29 @@ pub fn enclose_window<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
     Window::new(model).enclose(x0, t0, t1, opts)
 }
 
+/// Where the steps from t head for t1 (t < t1 doubles): (t1, h) with fl(t + h) = t1 when
+/// such a length exists ([`end_length`]); else a stop on the way, (b, h) with fl(t + h) = b
+/// and b the power of 2 (or 0) in (t, t1) at t1's binade: from b every length t1 − b is exact.
+/// There may be no length h with fl(t + h) = t1 when the sum crosses into a coarser binade: on
+/// ties to even, fl(t + h) skips every other double there (≈ 5 % of random windows from
+/// [0.1, 1] to [1, 4]).
+fn landing(t: f64, t1: f64) -> Option<(f64, f64)> {
+    if let Some(h) = end_length(t, t1) {
+        return Some((t1, h));
+    }
+    let b = if t < 0.0 && t1 > 0.0 {
+        0.0
+    } else if t1 > 0.0 {
+        2f64.powi(t1.log2().floor() as i32)
+    } else {
+        return None;
+    };
+    (t < b && b < t1).then(|| end_length(t, b).map(|h| (b, h)))?
+}
+
 /// A step length h ≥ 0 with fl(t + h) = t1 (t < t1 doubles): fl(t1 − t), moved by an ulp or
 /// two where the sum rounds to a neighbour of t1 (a tie, or t1 a power of 2). `None` if there
-/// is none near (not seen; every step end is a double and the window's must be t1).
+/// is none near (see [`landing`]).
 fn end_length(t: f64, t1: f64) -> Option<f64> {
     let mut h = t1 - t;
     for _ in 0..4 {
@@ -480,5 +502,34 @@ mod tests {
             let h = end_length(t, t1).unwrap();
             assert_eq!(t + h, t1, "{t} {t1}");
         }
+    }
+
+    /// No length from 0.6758… lands on 3.4657… (fl(t + h) skips it on ties to even): the
+    /// window stops at 2 on the way, and still ends at t1 (x′ = 1, whose one step would span the
+    /// whole window: x(t1) = 1 + t1 − t0 exactly, compared as rationals).
+    #[test]
+    fn a_window_whose_end_no_length_lands_on_stops_on_the_way() {
+        use rug::Rational;
+        let (t0, t1) = (0.6758310236303944, 3.4657351028000467);
+        assert_eq!(end_length(t0, t1), None);
+        assert_eq!(landing(t0, t1).map(|l| l.0), Some(2.0));
+        let one = Interval::from_exact_f64(1.0);
+        let win = Window::of_tape(Tape::<Interval, 1>::record(|v| {
+            let c = |x: f64| super::super::rec::Rec::constant(Interval::from_exact_f64(x));
+            vec![v[0].clone() * c(0.0) + c(1.0)]
+        }));
+        let w = win
+            .enclose([one], t0, t1, &TaylorOptions::default())
+            .unwrap_or_else(|e| panic!("{}", e.reason));
+        assert_eq!(w.flow.t_end(), t1);
+        assert!(w.flow.pieces.iter().any(|p| p.t1() == 2.0), "{}", w.steps);
+        let exact =
+            Rational::from(1) + Rational::from_f64(t1).unwrap() - Rational::from_f64(t0).unwrap();
+        let (lo, hi) = (
+            Rational::from_f64(w.x1[0].inf()).unwrap(),
+            Rational::from_f64(w.x1[0].sup()).unwrap(),
+        );
+        assert!(lo <= exact && exact <= hi, "{:?}", w.x1[0]);
+        assert!(w.x1[0].wid() < 1e-14, "{:?}", w.x1[0]);
     }
 }
