@@ -91,6 +91,7 @@ __all__ = [
     "Sensitivity",
     "band",
     "BandResult",
+    "InterpBandResult",
     "prove_monotone",
     "MonotoneResult",
     "plot",
@@ -1372,7 +1373,7 @@ def profile(
 
 
 from . import _frames, _progress, _sets, plot  # noqa: E402
-from .band import BandResult, MonotoneResult, band, prove_monotone  # noqa: E402
+from .band import BandResult, InterpBandResult, MonotoneResult, band, prove_monotone  # noqa: E402
 from .identify import IdentifyResult, identify, identify_dask  # noqa: E402
 from .laws import (  # noqa: E402
     FORMULAS, LAWS, ClassicalResult, FormulaErrors, LawsResult, classical, compare, laws,

@@ -6,14 +6,16 @@ CLI's ``prove monotone``).
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
-from typing import Any, Optional, Tuple
+from fractions import Fraction
+from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
 from ._native import native as _bwcl
 
-__all__ = ["band", "BandResult", "prove_monotone", "MonotoneResult"]
+__all__ = ["band", "BandResult", "InterpBandResult", "prove_monotone", "MonotoneResult"]
 
 
 def _range(v0: Any, what: str) -> str:
@@ -81,34 +83,130 @@ class BandResult:
         return pandas().DataFrame(list(self.pieces))
 
 
+def _down(x: Fraction) -> float:
+    """The largest float ≤ x."""
+    f = float(x)
+    return f if Fraction(f) <= x else math.nextafter(f, -math.inf)
+
+
+def _up(x: Fraction) -> float:
+    """The smallest float ≥ x."""
+    f = float(x)
+    return f if Fraction(f) >= x else math.nextafter(f, math.inf)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class InterpBandResult:
+    """The proved CoR curve over a range of v0 in the interpolation form (:func:`band` with
+    ``second_order=True``, the CLI's ``--band --second-order``), one row per node interval
+    [v0_lo[i], v0_hi[i]] (h = v0_hi − v0_lo): for every v0 in it,
+
+    e(v0) ∈ e_at_lo·(v0_hi − v0)/h + e_at_hi·(v0 − v0_lo)/h − d2e·(v0 − v0_lo)(v0_hi − v0)/2,
+
+    with e_at_lo, e_at_hi the proved e at the nodes and d2e the proved e″ over the node
+    interval's piece (interval arithmetic), T_s likewise; ``interval_thickness`` each row's
+    largest vertical width, ``thickness`` the band's. Every bound is rounded outward, the nodes
+    are exact; ``intervals`` holds the report's text of every field (exact decimals).
+    :meth:`e_at` and :meth:`ts_at` evaluate the form exactly (rationals) and round outward."""
+
+    model: str
+    #: the range proved, as floats and (``v0_text``) as the report's decimals
+    v0_range: Tuple[float, float]
+    v0_lo: np.ndarray
+    v0_hi: np.ndarray
+    e_at_lo: np.ndarray
+    e_at_hi: np.ndarray
+    d2e: np.ndarray
+    ts_at_lo: np.ndarray
+    ts_at_hi: np.ndarray
+    d2ts: np.ndarray
+    interval_thickness: np.ndarray
+    thickness: float
+    pieces_count: int
+    seconds: float
+    intervals: Tuple[dict, ...]
+    v0_text: Tuple[str, str] = ("", "")
+
+    def __len__(self) -> int:
+        return len(self.v0_lo)
+
+    def __repr__(self) -> str:
+        from ._frames import outward
+
+        return (f"InterpBandResult(model={self.model!r}, v0 ∈ [{self.v0_text[0]}, "
+                f"{self.v0_text[1]}], {self.pieces_count} pieces, {len(self)} node intervals, "
+                f"thickness ≤ {outward(self.thickness, True, 3)}, {self.seconds:.3g} s)")
+
+    def to_pandas(self) -> Any:
+        """One row per node interval, the report's exact decimals as text (each bound
+        outward); ``astype(float)`` gives the float bounds."""
+        from ._frames import pandas
+
+        return pandas().DataFrame(list(self.intervals))
+
+    def _form(self, v0: float, q: str) -> Tuple[float, float]:
+        v = float(v0)
+        if not (self.v0_lo.size and self.v0_lo[0] <= v <= self.v0_hi[-1]):
+            raise ValueError(f"v0: {v0!r:.20} is outside the band's range "
+                             f"[{self.v0_text[0]}, {self.v0_text[1]}]")
+        i = min(int(np.searchsorted(self.v0_hi, v)), len(self) - 1)
+        r = self.intervals[i]
+        x = Fraction(v)
+        lo, hi = Fraction(r["v0_lo"]), Fraction(r["v0_hi"])
+        h, p, qq = hi - lo, x - lo, hi - x
+        a = (Fraction(r[q + "_at_lo_lo"]), Fraction(r[q + "_at_lo_hi"]))
+        b = (Fraction(r[q + "_at_hi_lo"]), Fraction(r[q + "_at_hi_hi"]))
+        d = (Fraction(r["d2" + q + "_lo"]), Fraction(r["d2" + q + "_hi"]))
+        # p, q, h ≥ 0: each bound from the matching ends
+        low = a[0] * qq / h + b[0] * p / h - d[1] * p * qq / 2
+        high = a[1] * qq / h + b[1] * p / h - d[0] * p * qq / 2
+        return _down(low), _up(high)
+
+    def e_at(self, v0: float) -> Tuple[float, float]:
+        """Bounds (lower, upper) of e at the impact speed ``v0`` in the band's range: the
+        form evaluated exactly at the double ``v0``, rounded outward."""
+        return self._form(v0, "e")
+
+    def ts_at(self, v0: float) -> Tuple[float, float]:
+        """Bounds (lower, upper) of T_s at ``v0`` (as :meth:`e_at`)."""
+        return self._form(v0, "ts")
+
+
 def band(
     model: str,
     *,
     base: Any = None,
     physical: Any = None,
     v0: Any,
-    thickness: float = 1e-6,
+    thickness: Optional[float] = None,
     order: Optional[int] = None,
     time_limit: float = 300.0,
     threads: Optional[int] = None,
     progress: Any = None,
-) -> BandResult:
+    second_order: bool = False,
+) -> Union[BandResult, InterpBandResult]:
     """Prove the CoR curve e(v0) over a whole range of impact speeds ``v0=(lo, hi)`` (the
     CLI's ``cor --rigorous --band``): pieces on which e lies in a linear form e_c + de·(v0 −
-    v0_c), each at most ``thickness`` wide (1e-14 ≤ T ≤ 1), proved by the variational interval
-    engine. ``base`` (or ``physical``) as :func:`~bwcl.cor` (one set; decimals enclosed as
-    written). Not proved within ``time_limit`` seconds (or the engine cannot) raises
-    RuntimeError with the reason. ``progress``: True for a bar (tqdm when installed) or a
-    callable receiving ``(share, message)``: the share of the range settled, at most every
-    0.1 s."""
+    v0_c), each at most ``thickness`` wide (1e-14 ≤ T ≤ 1; default 1e-6), proved by the
+    variational interval engine. With ``second_order=True`` (``--second-order``, for thin bands:
+    default thickness 1e-9) the curve in the interpolation form between proved nodes, with e″
+    proved over each piece by the second variational system: an :class:`InterpBandResult`
+    ([0.1, 5] at 1e-9 takes ≈ 15 s on 2 CPUs). ``base`` (or ``physical``) as :func:`~bwcl.cor`
+    (one set; decimals enclosed as written). Not proved within ``time_limit`` seconds (or the
+    engine cannot) raises RuntimeError with the reason. ``progress``: True for a bar (tqdm
+    when installed) or a callable receiving ``(share, message)``: the share of the range
+    settled, at most every 0.1 s."""
     from . import _num, _source, _threads
 
     argv = ["cor"] + _source(model, base, None, physical, True)
     argv += ["--v0=" + _range(v0, "v0"), "--rigorous", "--band=python.json",
-             f"--thickness={_num(thickness, 'thickness')}",
              f"--time-limit={_num(time_limit, 'time_limit')}"]
+    if thickness is not None:
+        argv.append(f"--thickness={_num(thickness, 'thickness')}")
     if order is not None:
         argv.append(f"--order={_num(order, 'order')}")
+    if second_order:
+        argv.append("--second-order")
     from ._progress import share as _share
 
     cb = _share(progress, "band")
@@ -116,6 +214,8 @@ def band(
     d = json.loads(_bwcl.band(argv, threads=_threads(threads), progress=cb), parse_float=str)
     if cb is not None:
         cb(1.0, "done")
+    if "intervals" in d:
+        return _interp(d)
     pieces = tuple(d["pieces"])
 
     def col(name: str) -> np.ndarray:
@@ -130,6 +230,25 @@ def band(
         de=pair("de"), e=pair("e"), ts_c=pair("ts_c"), dts=pair("dts"), ts=pair("ts"),
         piece_thickness=col("thickness"), thickness=float(d["thickness"]),
         seconds=float(d["seconds"]), pieces=pieces, v0_text=(d["v0"][0], d["v0"][1]),
+    )
+
+
+def _interp(d: dict) -> InterpBandResult:
+    rows = tuple(d["intervals"])
+
+    def col(name: str) -> np.ndarray:
+        return np.array([float(r[name]) for r in rows], dtype=float)
+
+    def pair(name: str) -> np.ndarray:
+        return np.stack([col(name + "_lo"), col(name + "_hi")], axis=1) if rows else np.empty((0, 2))
+
+    return InterpBandResult(
+        model=d["model"], v0_range=(float(d["v0"][0]), float(d["v0"][1])),
+        v0_lo=col("v0_lo"), v0_hi=col("v0_hi"), e_at_lo=pair("e_at_lo"),
+        e_at_hi=pair("e_at_hi"), d2e=pair("d2e"), ts_at_lo=pair("ts_at_lo"),
+        ts_at_hi=pair("ts_at_hi"), d2ts=pair("d2ts"), interval_thickness=col("thickness"),
+        thickness=float(d["thickness"]), pieces_count=int(d["pieces_count"]),
+        seconds=float(d["seconds"]), intervals=rows, v0_text=(d["v0"][0], d["v0"][1]),
     )
 
 

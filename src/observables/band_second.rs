@@ -31,6 +31,7 @@ use crate::engines::taylor::{RigorError, TaylorOptions};
 use crate::models::{ModelKind, NdParams};
 use inari::Interval;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Most node intervals on one piece (beyond, the piece is tried narrower: its [e″] narrows at
 /// least ∝ width).
@@ -164,7 +165,7 @@ pub struct InterpOptions {
     pub progress: Option<Progress>,
 }
 
-/// Measured on [0.1, 5] at 1e-9 (benches/RESULTS.md): pieces of 0.05·min(v0, 1) first.
+/// Measured on [0.1, 5] at 1e-9 (benches/RESULTS.md): pieces of 0.05·clamp(v0, 0.1, 1) first.
 impl Default for InterpOptions {
     fn default() -> Self {
         Self {
@@ -255,7 +256,15 @@ fn prove_piece(
         })
         .collect();
     if vs.windows(2).any(|w| w[0] >= w[1]) {
-        return Ok(Tried::Failed);
+        return if hi - lo < 2.0 * io.min_width {
+            Err(RigorError {
+                reason: format!("no {m} distinct nodes on [{lo}, {hi}]"),
+                t: 0.0,
+                width: 0.0,
+            })
+        } else {
+            Ok(Tried::Failed)
+        };
     }
     let nodes = vs
         .iter()
@@ -292,8 +301,8 @@ fn first_guess(io: &InterpOptions, v: f64) -> f64 {
 }
 
 /// The segments [a, b] is cut into, walked in parallel: about equal numbers of pieces by
-/// [`first_guess`], at most [`SEGMENTS`], none with fewer than 3 pieces of the guess (their ends
-/// short decimals: printed exactly).
+/// [`first_guess`], at most [`SEGMENTS`], each of ≥ 3 pieces of the guess where [a, b] holds
+/// that many (their ends short decimals: printed exactly).
 fn segments(io: &InterpOptions, a: f64, b: f64) -> Vec<f64> {
     // the guessed number of pieces up to v: ∫ dv / first_guess(v), by the midpoint rule
     const GRID: usize = 4096;
@@ -305,7 +314,7 @@ fn segments(io: &InterpOptions, a: f64, b: f64) -> Vec<f64> {
         }))
         .collect();
     let total = cum[GRID];
-    let k = ((total / 3.0).ceil() as usize).clamp(1, SEGMENTS);
+    let k = ((total / 3.0).floor() as usize).clamp(1, SEGMENTS);
     let mut out = vec![a];
     for i in 1..k {
         let target = total * i as f64 / k as f64;
@@ -338,8 +347,12 @@ fn next_width(w: f64, m: f64, lo: f64, hi: f64) -> f64 {
     w * (AIM_NODES / m.max(1.0)).powf(2.0 / 3.0).clamp(lo, hi)
 }
 
+/// The reason of a segment stopped because another one failed.
+const ABORTED: &str = "another segment failed";
+
 /// One segment [s0, s1] walked from its left end, each piece's width from the last one's
-/// nodes ([`next_width`]); the pieces in order, and the range runs made.
+/// nodes ([`next_width`]); the pieces in order, the range runs and the point runs made. Stops
+/// (an error) when another segment has failed (`abort`).
 fn walk(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -347,16 +360,21 @@ fn walk(
     io: &InterpOptions,
     opts: &TaylorOptions,
     settled: &dyn Fn(f64),
+    abort: &AtomicBool,
 ) -> Result<(Vec<InterpPiece>, usize, usize), RigorError> {
     let (mut pieces, mut range_runs, mut point_runs) = (Vec::new(), 0, 0);
     let (mut lo, mut w) = (s0, first_guess(io, s0));
+    let stop = |reason: &str| RigorError {
+        reason: reason.into(),
+        t: 0.0,
+        width: 0.0,
+    };
     while lo < s1 {
         if opts.out_of_time() {
-            return Err(RigorError {
-                reason: crate::engines::taylor::DEADLINE.into(),
-                t: 0.0,
-                width: 0.0,
-            });
+            return Err(stop(crate::engines::taylor::DEADLINE));
+        }
+        if abort.load(Ordering::Relaxed) {
+            return Err(stop(ABORTED));
         }
         // (no sliver left at the end: the last piece takes it)
         let hi = if lo + 1.25 * w >= s1 {
@@ -365,6 +383,9 @@ fn walk(
             let c = super::sets::short_centre(lo + 0.9 * w, lo + 1.1 * w);
             if c > lo && c < s1 { c } else { lo + w }
         };
+        if hi <= lo || hi.is_nan() {
+            return Err(stop(&format!("no piece of width {w:e} after v0 = {lo}")));
+        }
         range_runs += 1;
         w = hi - lo;
         let known = pieces
@@ -389,7 +410,7 @@ fn walk(
 /// Proves the band of e (and T_s) over v0 ∈ [a, b] for base set `base` in the interpolation
 /// form (module doc), thickness at most `io.thickness`: [a, b] cut into [`segments`], walked in
 /// parallel, each piece's width adapted to the nodes its neighbour needed ([`walk`]). Fails
-/// with the first piece that cannot be proved down to `io.min_width`.
+/// with a piece that cannot be proved down to `io.min_width` (the other segments then stop).
 pub fn prove_band_second(
     kind: ModelKind,
     base: &NdParams<Interval>,
@@ -398,7 +419,18 @@ pub fn prove_band_second(
     io: &InterpOptions,
     opts: &TaylorOptions,
 ) -> Result<InterpBand, RigorError> {
+    if !(a < b && b.is_finite() && io.min_width > 0.0) {
+        return Err(RigorError {
+            reason: format!(
+                "bad band: [{a}, {b}] with the narrowest piece {:e}",
+                io.min_width
+            ),
+            t: 0.0,
+            width: 0.0,
+        });
+    }
     let cuts = segments(io, a, b);
+    let abort = AtomicBool::new(false);
     let state = std::sync::Mutex::new((0.0f64, 0usize));
     let settled = |dw: f64| {
         if let Some(Progress(f)) = &io.progress {
@@ -411,8 +443,22 @@ pub fn prove_band_second(
     };
     let walked: Vec<_> = cuts
         .par_windows(2)
-        .map(|w| walk(kind, base, (w[0], w[1]), io, opts, &settled))
-        .collect::<Result<_, _>>()?;
+        .map(|w| {
+            let r = walk(kind, base, (w[0], w[1]), io, opts, &settled, &abort);
+            if r.is_err() {
+                abort.store(true, Ordering::Relaxed);
+            }
+            r
+        })
+        .collect();
+    // (the failure itself, not a segment it stopped)
+    if let Some(Err(e)) = walked
+        .iter()
+        .find(|r| r.as_ref().is_err_and(|e| e.reason != ABORTED))
+    {
+        return Err(e.clone());
+    }
+    let walked = walked.into_iter().collect::<Result<Vec<_>, _>>()?;
     let mut band = InterpBand {
         pieces: Vec::new(),
         range_runs: 0,

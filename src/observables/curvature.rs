@@ -166,11 +166,11 @@ where
     // the branch points crossed in their variables (the floor ∝ w^(q−1) of the crossings at
     // fixed times gone); where that fails, the run in time alone
     match through_branches::<N, D, E>(&tape, x0, ju, opts) {
-        Err(e) if !e.out_of_time() => {
+        Err((e, true)) if !e.out_of_time() => {
             let (flow, ev) = integrate_system(&tape, x0, N, opts)?;
             at_separation(&tape, &flow, &ev, ju, zero_time(), flow.len())
         }
-        r => r,
+        r => r.map_err(|(e, _)| e),
     }
 }
 
@@ -180,16 +180,19 @@ fn zero_time() -> Interval {
 
 /// The run from `x0`, each branch point it meets after the start's crossed in its variable
 /// ([`crossing`]): the time run stops at the first piece that holds one, the set is carried
-/// across it from t_a, and the run goes on from the common time after it.
+/// across it from t_a, and the run goes on from the common time after it. An error says
+/// whether a crossing was tried (before the first one, the run is the fixed-time run itself).
+#[allow(clippy::result_large_err)]
 fn through_branches<const N: usize, const D: usize, const E: usize>(
     tape: &Tape<Interval, D>,
     x0: [Interval; D],
     ju: usize,
     opts: &TaylorOptions,
-) -> Result<Curvature, RigorError> {
+) -> Result<Curvature, (RigorError, bool)> {
     let co = crossing::CrossingOptions::default();
     let (mut x, mut t_off, mut steps) = (x0, zero_time(), 0);
     for k in 0..=MAX_CROSSINGS {
+        let tried = k > 0;
         let mut watch = crossing::BranchWatch::new(tape, N, &co);
         let mut found = None;
         let mut stop = |flow: &Flow<D, Interval>, cleared: f64| {
@@ -197,16 +200,29 @@ fn through_branches<const N: usize, const D: usize, const E: usize>(
             found = found.or_else(|| watch.next(flow, cleared));
             k < MAX_CROSSINGS && found.is_some()
         };
-        let (flow, (j, t_a)) = match integrate_system_until(tape, x, N, opts, &mut stop)? {
+        let ended = integrate_system_until(tape, x, N, opts, &mut stop).map_err(|e| (e, tried))?;
+        let (flow, (j, t_a)) = match ended {
             Ended::Separated(flow, ev) => {
-                return at_separation(tape, &flow, &ev, ju, t_off, steps + flow.len());
+                // the last pieces before the separation's earliest time, not looked at yet
+                let late = if k < MAX_CROSSINGS {
+                    watch.next(&flow, ev.ts.inf())
+                } else {
+                    None
+                };
+                match late {
+                    Some(b) => (flow, b),
+                    None => {
+                        return at_separation(tape, &flow, &ev, ju, t_off, steps + flow.len())
+                            .map_err(|e| (e, tried));
+                    }
+                }
             }
             Ended::Stopped { flow, .. } => (flow, found.expect("stopped at a branch point")),
         };
         let xa = flow
             .enclose(t_a)
-            .ok_or_else(|| fail("no set before the branch point", t_a, 0.0))?;
-        let c = crossing::cross::<D, E>(tape, N, j, t_a, &xa, opts, &co)?;
+            .ok_or_else(|| (fail("no set before the branch point", t_a, 0.0), true))?;
+        let c = crossing::cross::<D, E>(tape, N, j, t_a, &xa, opts, &co).map_err(|e| (e, true))?;
         steps += flow.pieces.iter().take_while(|p| p.t1() <= t_a).count() + c.steps;
         t_off += Interval::try_from((c.t1, c.t1)).unwrap();
         x = c.x1;

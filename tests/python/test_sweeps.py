@@ -114,6 +114,31 @@ def test_band_holds_point_enclosures_and_monotone_verdicts():
         bwcl.band("shc", base=DSS, v0=(0.9, 1.0), thickness=2.0)
 
 
+def test_a_second_order_band_holds_point_enclosures_between_its_nodes():
+    b = bwcl.band("shc", base=DSS, v0=(0.95, 1.05), second_order=True)
+    assert isinstance(b, bwcl.InterpBandResult)
+    assert len(b) >= 10 and b.thickness <= 1e-9 and b.pieces_count >= 1
+    assert b.v0_lo[0] == 0.95 and b.v0_hi[-1] == 1.05
+    assert (b.v0_lo[1:] == b.v0_hi[:-1]).all()
+    assert (b.interval_thickness <= 1e-9).all()
+    # between nodes and at one: the exact form's bounds hold the point runs' enclosures
+    vs = [0.95, 0.9731, float(b.v0_lo[len(b) // 2]), 1.0437, 1.05]
+    q = bwcl.cor_rigorous("shc", base=DSS, v0=vs)
+    for k, v in enumerate(vs):
+        lo, hi = b.e_at(v)
+        assert 0 < hi - lo <= 1e-9
+        assert lo <= q.e[k, 0] and q.e[k, 1] <= hi, (v, lo, hi, q.e[k])
+        tlo, thi = b.ts_at(v)
+        assert tlo <= q.ts[k, 0] and q.ts[k, 1] <= thi
+    # a negative control: the form of a neighbouring speed misses this one's e
+    lo, hi = b.e_at(1.0437)
+    assert not (lo <= q.e[0, 0] and q.e[0, 1] <= hi)
+    with pytest.raises(ValueError, match="outside"):
+        b.e_at(1.06)
+    assert "node intervals" in repr(b) and len(repr(b)) < 300
+    assert len(b.to_pandas()) == len(b)
+
+
 def test_progress_callbacks():
     calls = []
     r = bwcl.cor("shc", base=grid(40), v0=np.linspace(0.1, 5, 100),

@@ -83,7 +83,8 @@ fn branch_components<const D: usize>(tape: &Tape<Interval, D>, n_state: usize) -
 /// The first branch point a flow crosses, watched piece by piece as the flow grows (a run can
 /// stop there, [`super::integrate_system_until`]): once every branch component has left 0 (the
 /// start's double branch point is not crossed here), the first piece whose box holds 0 in a
-/// branch component j, among the pieces before `before` (the separation's earliest time);
+/// branch component j, among the pieces ending before `before` (a time up to which the
+/// separation condition is proved to fail: the run's `cleared`, or inf T_s);
 /// with the last piece end t_a before it where the whole set is far enough from 0 in j. Only
 /// that first crossing is reported (none if no piece end before it was far enough).
 pub struct BranchWatch {

@@ -1,5 +1,6 @@
 //! The engine's loop ([`super::integrate_system`]): step after step from the start until the
-//! separation event is proved or the run cannot go on. A step in stages, in this order:
+//! separation event is proved, the run cannot go on, or the caller's test says stop
+//! ([`integrate_tape_until`]). A step in stages, in this order:
 //! [`Run::check`] (the set still narrow, time left, the horizon not reached),
 //! [`Run::survey`] (the field at the set: how soon a switching surface is reached, the longest
 //! step, the kinks' sides), [`Run::singular_step`] (across a near branch point in one step),
