@@ -217,12 +217,7 @@ def band(
     if "intervals" in d:
         return _interp(d)
     pieces = tuple(d["pieces"])
-
-    def col(name: str) -> np.ndarray:
-        return np.array([float(p[name]) for p in pieces], dtype=float)
-
-    def pair(name: str) -> np.ndarray:
-        return np.stack([col(name + "_lo"), col(name + "_hi")], axis=1) if pieces else np.empty((0, 2))
+    col, pair = _columns(pieces)
 
     return BandResult(
         model=d["model"], v0_range=(float(d["v0"][0]), float(d["v0"][1])),
@@ -233,14 +228,22 @@ def band(
     )
 
 
-def _interp(d: dict) -> InterpBandResult:
-    rows = tuple(d["intervals"])
+def _columns(rows: Tuple[dict, ...]) -> Tuple[Any, Any]:
+    """Readers of the report's rows: ``col(name)`` the floats of a field, ``pair(name)`` the
+    (n, 2) array of its ``_lo`` and ``_hi`` fields."""
 
     def col(name: str) -> np.ndarray:
         return np.array([float(r[name]) for r in rows], dtype=float)
 
     def pair(name: str) -> np.ndarray:
         return np.stack([col(name + "_lo"), col(name + "_hi")], axis=1) if rows else np.empty((0, 2))
+
+    return col, pair
+
+
+def _interp(d: dict) -> InterpBandResult:
+    rows = tuple(d["intervals"])
+    col, pair = _columns(rows)
 
     return InterpBandResult(
         model=d["model"], v0_range=(float(d["v0"][0]), float(d["v0"][1])),

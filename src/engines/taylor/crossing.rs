@@ -335,25 +335,31 @@ mod tests {
         Interval::try_from((lo, hi)).unwrap()
     }
 
-    /// ż = u, ẏ = |z|^(−1/2) (z the branch component, u a parameter), F = 1, V = −1 (no
-    /// separation): y(t) = (2/u)(sgn z(t)·√|z(t)| − sgn z0·√|z0|), z(t) = z0 + ut.
-    #[test]
-    fn a_branch_point_crossed_in_its_variable_holds_every_member() {
+    fn c(x: f64) -> Rec<Interval> {
+        Rec::constant(iv(x, x))
+    }
+
+    /// ż = u, ẏ = |z|^(−1/2) (z the branch component, u ∈ `u` a parameter), the outputs F
+    /// and V the constants `fv`.
+    fn closed_form(u: Interval, fv: (f64, f64)) -> Tape<Interval, 3> {
         let mut params = [None; 3];
-        params[2] = Some(iv(0.9, 1.1));
-        let tape = Tape::<Interval, 3>::record_with(params, |v| {
-            let c = |x: f64| Rec::constant(iv(x, x));
+        params[2] = Some(u);
+        Tape::<Interval, 3>::record_with(params, |v| {
             vec![
                 v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
                 Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
                 c(0.0),
-                c(1.0),
-                c(-1.0),
+                c(fv.0),
+                c(fv.1),
             ]
-        });
-        assert_eq!(tape.switching(), &[0]);
-        // the members: z0 ∈ [−0.012, −0.010], y0 = 0, u ∈ [0.9, 1.1] at t_a = 0.5
-        let xa = [iv(-0.012, -0.010), iv(0.0, 0.0), iv(0.9, 1.1)];
+        })
+    }
+
+    /// The crossing of z = 0 from the set `xa` at t_a = 0.5 (the last component a parameter).
+    fn crossing<const D: usize, const E: usize>(
+        tape: &Tape<Interval, D>,
+        xa: &[Interval; D],
+    ) -> Result<Crossed<D>, RigorError> {
         let co = CrossingOptions {
             near: 1e-3,
             ..CrossingOptions::default()
@@ -362,8 +368,18 @@ mod tests {
             max_width: 1.0,
             ..TaylorOptions::default()
         };
-        let c = cross::<3, 4>(&tape, 2, 0, 0.5, &xa, &opts, &co)
-            .unwrap_or_else(|e| panic!("{}", e.reason));
+        cross::<D, E>(tape, D - 1, 0, 0.5, xa, &opts, &co)
+    }
+
+    /// ż = u, ẏ = |z|^(−1/2) (z the branch component, u a parameter), F = 1, V = −1 (no
+    /// separation): y(t) = (2/u)(sgn z(t)·√|z(t)| − sgn z0·√|z0|), z(t) = z0 + ut.
+    #[test]
+    fn a_branch_point_crossed_in_its_variable_holds_every_member() {
+        let tape = closed_form(iv(0.9, 1.1), (1.0, -1.0));
+        assert_eq!(tape.switching(), &[0]);
+        // the members: z0 ∈ [−0.012, −0.010], y0 = 0, u ∈ [0.9, 1.1] at t_a = 0.5
+        let xa = [iv(-0.012, -0.010), iv(0.0, 0.0), iv(0.9, 1.1)];
+        let c = crossing::<3, 4>(&tape, &xa).unwrap_or_else(|e| panic!("{}", e.reason));
         let dt = c.t1 - 0.5;
         assert!(dt > 0.0);
         let k = |z: f64| 2.0 * z.signum() * z.abs().sqrt();
@@ -388,48 +404,23 @@ mod tests {
     }
 
     /// The crossing's own checks, each on the closed-form system above changed so that it
-    /// must refuse: `d` the field and outputs (F, V) of the recording, `xa` the set at t_a.
+    /// must refuse: the reason.
     fn refused<const D: usize, const E: usize>(
-        params: [Option<Interval>; D],
-        d: impl Fn(&[Rec<Interval>]) -> Vec<Rec<Interval>>,
+        tape: &Tape<Interval, D>,
         xa: [Interval; D],
     ) -> String {
-        let tape = Tape::<Interval, D>::record_with(params, |v| d(v));
-        let co = CrossingOptions {
-            near: 1e-3,
-            ..CrossingOptions::default()
-        };
-        let opts = TaylorOptions {
-            max_width: 1.0,
-            ..TaylorOptions::default()
-        };
-        match cross::<D, E>(&tape, D - 1, 0, 0.5, &xa, &opts, &co) {
+        match crossing::<D, E>(tape, &xa) {
             Ok(c) => panic!("crossed to t1 = {}: {:?}", c.t1, c.x1),
             Err(e) => e.reason,
         }
-    }
-
-    fn c(x: f64) -> Rec<Interval> {
-        Rec::constant(iv(x, x))
     }
 
     /// ż = u < 0 from z0 < 0: the set moves away from the branch point (crossed "in s" it would
     /// run backwards in time).
     #[test]
     fn a_set_moving_away_from_the_branch_point_is_not_crossed() {
-        let mut params = [None; 3];
-        params[2] = Some(iv(-1.1, -0.9));
         let r = refused::<3, 4>(
-            params,
-            |v| {
-                vec![
-                    v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
-                    Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
-                    c(0.0),
-                    c(1.0),
-                    c(-1.0),
-                ]
-            },
+            &closed_form(iv(-1.1, -0.9), (1.0, -1.0)),
             [iv(-0.012, -0.010), iv(0.0, 0.0), iv(-1.1, -0.9)],
         );
         assert!(r.contains("does not move towards"), "{r}");
@@ -438,19 +429,8 @@ mod tests {
     /// F = −1, V = 1: the separation condition holds all along; no crossing may pass it.
     #[test]
     fn a_crossing_through_the_separation_is_refused() {
-        let mut params = [None; 3];
-        params[2] = Some(iv(0.9, 1.1));
         let r = refused::<3, 4>(
-            params,
-            |v| {
-                vec![
-                    v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
-                    Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
-                    c(0.0),
-                    c(-1.0),
-                    c(1.0),
-                ]
-            },
+            &closed_form(iv(0.9, 1.1), (-1.0, 1.0)),
             [iv(-0.012, -0.010), iv(0.0, 0.0), iv(0.9, 1.1)],
         );
         assert!(r.contains("separation"), "{r}");
@@ -463,19 +443,19 @@ mod tests {
     fn a_crossing_over_a_kink_is_refused() {
         let mut params = [None; 4];
         params[3] = Some(iv(0.9, 1.1));
+        let tape = Tape::<Interval, 4>::record_with(params, |v| {
+            vec![
+                v[3].clone() + v[0].scale(&iv(0.0, 0.0)),
+                Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5))
+                    + Scalar::<Interval>::abs(&v[2]).scale(&iv(1e-3, 1e-3)),
+                c(1.0) + v[2].scale(&iv(0.0, 0.0)),
+                c(0.0),
+                c(1.0),
+                c(-1.0),
+            ]
+        });
         let r = refused::<4, 5>(
-            params,
-            |v| {
-                vec![
-                    v[3].clone() + v[0].scale(&iv(0.0, 0.0)),
-                    Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5))
-                        + Scalar::<Interval>::abs(&v[2]).scale(&iv(1e-3, 1e-3)),
-                    c(1.0) + v[2].scale(&iv(0.0, 0.0)),
-                    c(0.0),
-                    c(1.0),
-                    c(-1.0),
-                ]
-            },
+            &tape,
             [
                 iv(-0.012, -0.010),
                 iv(0.0, 0.0),
