@@ -226,6 +226,10 @@ GUARDS = [
      [("        .all(|&k| k >= n_state || !b[k].contains(0.0));", "        .all(|&k| true || k >= n_state || !b[k].contains(0.0));")],
      "no box of a crossing may hold a kink component's 0",
      ["--lib", "crossing"]),
+    ("crossing-windows-clear", "src/engines/taylor/crossing.rs",
+     [("    if !boxes_clear {", "    if false && !boxes_clear {")],
+     "no box of the windows in s (nor the step across 0) may hold a kink's 0 or the separation",
+     ["--lib", "crossing"]),
     # a window whose end no step length lands on (src/engines/taylor/window.rs, 2026-11-29)
     ("window-landing", "src/engines/taylor/window.rs",
      [("let (target, to_end) = landing(t, t1).ok_or_else",

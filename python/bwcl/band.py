@@ -84,14 +84,20 @@ class BandResult:
 
 
 def _down(x: Fraction) -> float:
-    """The largest float ≤ x."""
-    f = float(x)
+    """The largest float ≤ x (−inf below the floats' range)."""
+    try:
+        f = float(x)
+    except OverflowError:
+        return -math.inf if x < 0 else math.nextafter(math.inf, 0)
     return f if Fraction(f) <= x else math.nextafter(f, -math.inf)
 
 
 def _up(x: Fraction) -> float:
-    """The smallest float ≥ x."""
-    f = float(x)
+    """The smallest float ≥ x (+inf above the floats' range)."""
+    try:
+        f = float(x)
+    except OverflowError:
+        return math.inf if x > 0 else math.nextafter(-math.inf, 0)
     return f if Fraction(f) >= x else math.nextafter(f, math.inf)
 
 
@@ -144,15 +150,25 @@ class InterpBandResult:
 
         return pandas().DataFrame(list(self.intervals))
 
-    def _form(self, v0: float, q: str) -> Tuple[float, float]:
-        v = float(v0)
-        if not (self.v0_lo.size and self.v0_lo[0] <= v <= self.v0_hi[-1]):
+    def _form(self, v0: Any, q: str) -> Tuple[float, float]:
+        # v0 exactly: a float as the double it is, a str, int, Decimal or Fraction as written
+        try:
+            x = Fraction(v0)
+        except (TypeError, ValueError, OverflowError):
+            raise ValueError(f"v0: expected a finite impact speed, got {v0!r:.20}") from None
+        rows = self.intervals
+        if not rows or not (Fraction(rows[0]["v0_lo"]) <= x <= Fraction(rows[-1]["v0_hi"])):
             raise ValueError(f"v0: {v0!r:.20} is outside the band's range "
                              f"[{self.v0_text[0]}, {self.v0_text[1]}]")
-        i = min(int(np.searchsorted(self.v0_hi, v)), len(self) - 1)
-        r = self.intervals[i]
-        x = Fraction(v)
+        # the first node interval holding x (the left one at a shared node)
+        i = min(int(np.searchsorted(self.v0_hi, float(x))), len(self) - 1)
+        while i > 0 and x <= Fraction(rows[i - 1]["v0_hi"]):
+            i -= 1
+        while x > Fraction(rows[i]["v0_hi"]):
+            i += 1
+        r = rows[i]
         lo, hi = Fraction(r["v0_lo"]), Fraction(r["v0_hi"])
+        assert lo <= x <= hi, (v0, r["v0_lo"], r["v0_hi"])
         h, p, qq = hi - lo, x - lo, hi - x
         a = (Fraction(r[q + "_at_lo_lo"]), Fraction(r[q + "_at_lo_hi"]))
         b = (Fraction(r[q + "_at_hi_lo"]), Fraction(r[q + "_at_hi_hi"]))
@@ -162,12 +178,13 @@ class InterpBandResult:
         high = a[1] * qq / h + b[1] * p / h - d[0] * p * qq / 2
         return _down(low), _up(high)
 
-    def e_at(self, v0: float) -> Tuple[float, float]:
+    def e_at(self, v0: Any) -> Tuple[float, float]:
         """Bounds (lower, upper) of e at the impact speed ``v0`` in the band's range: the
-        form evaluated exactly at the double ``v0``, rounded outward."""
+        form evaluated exactly (a float as the double it is; a str, int, Decimal or Fraction
+        as written), rounded outward."""
         return self._form(v0, "e")
 
-    def ts_at(self, v0: float) -> Tuple[float, float]:
+    def ts_at(self, v0: Any) -> Tuple[float, float]:
         """Bounds (lower, upper) of T_s at ``v0`` (as :meth:`e_at`)."""
         return self._form(v0, "ts")
 

@@ -127,14 +127,20 @@ def test_a_second_order_band_holds_point_enclosures_between_its_nodes():
     for k, v in enumerate(vs):
         lo, hi = b.e_at(v)
         assert 0 < hi - lo <= 1e-9
-        assert lo <= q.e[k, 0] and q.e[k, 1] <= hi, (v, lo, hi, q.e[k])
+        # both enclose the true value: they meet
+        assert lo <= q.e[k, 1] and q.e[k, 0] <= hi, (v, lo, hi, q.e[k])
         tlo, thi = b.ts_at(v)
-        assert tlo <= q.ts[k, 0] and q.ts[k, 1] <= thi
+        assert tlo <= q.ts[k, 1] and q.ts[k, 0] <= thi
+    # a decimal as written (not its double) gives bounds as tight
+    lo, hi = b.e_at("0.9731")
+    assert 0 < hi - lo <= 1e-9 and lo <= q.e[1, 1] and q.e[1, 0] <= hi
     # a negative control: the form of a neighbouring speed misses this one's e
     lo, hi = b.e_at(1.0437)
     assert not (lo <= q.e[0, 0] and q.e[0, 1] <= hi)
     with pytest.raises(ValueError, match="outside"):
         b.e_at(1.06)
+    with pytest.raises(ValueError, match="finite"):
+        b.e_at(float("nan"))
     assert "node intervals" in repr(b) and len(repr(b)) < 300
     assert len(b.to_pandas()) == len(b)
 

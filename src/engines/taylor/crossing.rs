@@ -436,6 +436,25 @@ mod tests {
         assert!(r.contains("separation"), "{r}");
     }
 
+    /// F = −z − 0.005, V = 1: clear at the entry (z ≤ −0.010), the separation condition holds
+    /// once z ≥ −0.005, inside the windows in s: refused by their boxes' check.
+    #[test]
+    fn a_separation_inside_the_windows_in_s_is_refused() {
+        let mut params = [None; 3];
+        params[2] = Some(iv(0.9, 1.1));
+        let tape = Tape::<Interval, 3>::record_with(params, |v| {
+            vec![
+                v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
+                Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
+                c(0.0),
+                c(-0.005) - v[0].clone(),
+                c(1.0),
+            ]
+        });
+        let r = refused::<3, 4>(&tape, [iv(-0.012, -0.010), iv(0.0, 0.0), iv(0.9, 1.1)]);
+        assert!(r.contains("separation inside the crossing"), "{r}");
+    }
+
     /// k̇ = 1 from k0 = −0.001 with |k| in the field: the kink k = 0 is crossed while the set
     /// enters the crossing (the jump of S₂ at a kink is not carried by the crossing; the
     /// windows in s refuse a kink on their own, the entry and exit steps by this check).

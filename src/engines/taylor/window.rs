@@ -331,21 +331,24 @@ pub fn enclose_window<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
 }
 
 /// Where the steps from t head for t1 (t < t1 doubles): (t1, h) with fl(t + h) = t1 when
-/// such a length exists ([`end_length`]); else a stop on the way, (b, h) with fl(t + h) = b
-/// and b the power of 2 (or 0) in (t, t1) at t1's binade: from b every length t1 − b is exact.
-/// There may be no length h with fl(t + h) = t1 when the sum crosses into a coarser binade: on
-/// ties to even, fl(t + h) skips every other double there (≈ 5 % of random windows from
-/// [0.1, 1] to [1, 4]).
+/// such a length exists ([`end_length`]); else a stop on the way, (b, h) with fl(t + h) = b, b
+/// a power of 2 (or 0) in (t, t1) from which every length t1 − b is exact: 0 where t < 0 < t1,
+/// the start of t1's binade for t1 > 0, the end of |t1|'s binade (−2^(e+1), |t1| ∈ [2^e,
+/// 2^(e+1))) for t1 < 0. There may be no length h with fl(t + h) = t1 when the sum crosses
+/// into a coarser binade: on ties to even, fl(t + h) skips every other double there (≈ 5 % of
+/// random windows from [0.1, 1] to [1, 4]).
 fn landing(t: f64, t1: f64) -> Option<(f64, f64)> {
     if let Some(h) = end_length(t, t1) {
         return Some((t1, h));
     }
+    // 2^e for |x| ∈ [2^e, 2^(e+1)) (normal x), from the exponent bits: log₂ may round up
+    let binade = |x: f64| f64::from_bits(x.abs().to_bits() & 0x7ff0_0000_0000_0000);
     let b = if t < 0.0 && t1 > 0.0 {
         0.0
     } else if t1 > 0.0 {
-        2f64.powi(t1.log2().floor() as i32)
+        binade(t1)
     } else {
-        return None;
+        -2.0 * binade(t1)
     };
     (t < b && b < t1).then(|| end_length(t, b).map(|h| (b, h)))?
 }
@@ -510,6 +513,17 @@ mod tests {
     #[test]
     fn a_window_whose_end_no_length_lands_on_stops_on_the_way() {
         use rug::Rational;
+        // (log₂ of 8 − 2⁻⁵⁰ rounds to 3: the stop is 4, from the exponent bits; below 0 the stop
+        // is the end of |t1|'s binade)
+        for (t, t1, b) in [
+            (2.0000000000000004, 7.999999999999999, 4.0),
+            (-2.4759292541837827, -0.6265375351775712, -1.0),
+        ] {
+            assert_eq!(end_length(t, t1), None);
+            let (stop, h) = landing(t, t1).unwrap();
+            assert_eq!((stop, t + h), (b, b));
+            assert_eq!(b + end_length(b, t1).unwrap(), t1);
+        }
         let (t0, t1) = (0.6758310236303944, 3.4657351028000467);
         assert_eq!(end_length(t0, t1), None);
         assert_eq!(landing(t0, t1).map(|l| l.0), Some(2.0));
