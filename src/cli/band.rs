@@ -87,19 +87,27 @@ fn fields(p: &BandPiece, lo: f64, hi: f64) -> Vec<String> {
     f
 }
 
-fn json(pieces: &[BandPiece], meta: &str, lo: f64, hi: f64) -> Vec<u8> {
-    let mut s = format!("{{{meta},\"pieces\":[");
-    for (k, p) in pieces.iter().enumerate() {
+/// A band report as JSON: `{meta, "key": [{column: value, …}, …]}`, one object per row of
+/// `head`'s columns, a column named by `exact` written as a string (an exact decimal: a JSON
+/// number reader would round it), every other as the number it is.
+pub(super) fn json_rows(
+    meta: &str,
+    key: &str,
+    head: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+    exact: impl Fn(&str) -> bool,
+) -> Vec<u8> {
+    let mut s = format!("{{{meta},\"{key}\":[");
+    for (k, r) in rows.into_iter().enumerate() {
         if k > 0 {
             s.push(',');
         }
         s.push('{');
-        for (i, (h, v)) in HEAD.iter().zip(fields(p, lo, hi)).enumerate() {
+        for (i, (h, v)) in head.iter().zip(r).enumerate() {
             if i > 0 {
                 s.push(',');
             }
-            // v0_c exactly, as a string (a JSON number reader would round it)
-            if *h == "v0_c" {
+            if exact(h) {
                 s.push_str(&format!("\"{h}\":\"{v}\""));
             } else {
                 s.push_str(&format!("\"{h}\":{v}"));
@@ -193,7 +201,14 @@ pub fn band_report(
             band.pieces.len(),
             outward(thick, Rounding::Up)
         );
-        json(&band.pieces, &meta, lo, hi)
+        // (v0_c exactly)
+        json_rows(
+            &meta,
+            "pieces",
+            &HEAD,
+            band.pieces.iter().map(|p| fields(p, lo, hi)),
+            |h| h == "v0_c",
+        )
     } else {
         output::csv(&HEAD, band.pieces.iter().map(|p| fields(p, lo, hi)))?
     };

@@ -54,30 +54,6 @@ fn rows(p: &InterpPiece) -> Vec<Vec<String>> {
         .collect()
 }
 
-fn json(rows: &[Vec<String>], meta: &str) -> Vec<u8> {
-    let mut s = format!("{{{meta},\"intervals\":[");
-    for (k, r) in rows.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        s.push('{');
-        for (i, (h, v)) in HEAD.iter().zip(r).enumerate() {
-            if i > 0 {
-                s.push(',');
-            }
-            // the nodes exactly, as strings (a JSON number reader would round them)
-            if i < 2 {
-                s.push_str(&format!("\"{h}\":\"{v}\""));
-            } else {
-                s.push_str(&format!("\"{h}\":{v}"));
-            }
-        }
-        s.push('}');
-    }
-    s.push_str("]}\n");
-    s.into_bytes()
-}
-
 /// The proved band in the interpolation form: the file's bytes and the summary line.
 #[allow(clippy::too_many_arguments)]
 pub fn report(
@@ -111,7 +87,10 @@ pub fn report(
             rows.len(),
             outward(thick, Rounding::Up)
         );
-        json(&rows, &meta)
+        // (the nodes exactly)
+        super::band::json_rows(&meta, "intervals", &HEAD, rows, |h| {
+            h == "v0_lo" || h == "v0_hi"
+        })
     } else {
         output::csv(&HEAD, rows)?
     };
