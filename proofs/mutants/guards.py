@@ -230,6 +230,10 @@ GUARDS = [
      [("    if !boxes_clear {", "    if false && !boxes_clear {")],
      "no box of the windows in s (nor the step across 0) may hold a kink's 0 or the separation",
      ["--lib", "crossing"]),
+    ("crossing-watch-before", "src/engines/taylor/crossing.rs",
+     [("            if p.t1() >= before {", "            if false && p.t1() >= before {")],
+     "a branch point is reported only in pieces that end before the separation may start",
+     ["--lib", "crossing"]),
     # a window whose end no step length lands on (src/engines/taylor/window.rs, 2026-11-29)
     ("window-landing", "src/engines/taylor/window.rs",
      [("let (target, to_end) = landing(t, t1).ok_or_else",

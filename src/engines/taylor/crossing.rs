@@ -403,6 +403,34 @@ mod tests {
         assert!(c.x1[1].wid() < 0.3, "{:?}", c.x1[1]);
     }
 
+    /// The watch over a flow with z = −0.3 + t in pieces of 0.1 (z = 0 inside [0.2, 0.3]):
+    /// the crossing from t_a = 0.2, reported only once the piece holding it ends before
+    /// `before` (the separation may not be excluded after it), and once only.
+    #[test]
+    fn the_watch_reports_a_branch_point_only_before_the_separation() {
+        use super::super::flow::Piece;
+        let tape = closed_form(iv(0.9, 1.1), (1.0, -1.0));
+        let mut flow = Flow::<3, Interval>::default();
+        for k in 0..4 {
+            let t0 = 0.1 * k as f64;
+            flow.pieces.push(Piece::LowOrder {
+                t0,
+                t1: 0.1 * (k + 1) as f64,
+                x0: [iv(-0.3, -0.3) + iv(t0, t0), iv(0.0, 0.0), iv(0.9, 1.1)],
+                slope: [iv(1.0, 1.0), iv(0.0, 0.0), iv(0.0, 0.0)],
+            });
+        }
+        let co = CrossingOptions::default();
+        let mut watch = BranchWatch::new(&tape, 2, &co);
+        assert_eq!(watch.next(&flow, 0.25), None);
+        assert_eq!(watch.next(&flow, 1.0), Some((0, 0.2)));
+        assert_eq!(watch.next(&flow, 1.0), None);
+        assert_eq!(
+            BranchWatch::new(&tape, 2, &co).next(&flow, 1.0),
+            Some((0, 0.2))
+        );
+    }
+
     /// The crossing's own checks, each on the closed-form system above changed so that it
     /// must refuse: the reason.
     fn refused<const D: usize, const E: usize>(
