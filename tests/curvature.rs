@@ -198,16 +198,38 @@ fn a_band_walked_in_segments_covers_its_range_and_holds_precise_values() {
 }
 
 /// SHC DSA has n = 1: |Z|^n is |Z|, whose derivative sgn Z jumps where Z = 0 (not a kink of
-/// |·|: a power), so S₂ jumps there too; the second-order form is refused with that reason
-/// rather than given without the jump.
+/// |·|: Z also enters a power), so S₂ jumps there, at each member's own time; the jump is
+/// carried in the crossing of Z = 0 (`crossing::across_zero`) and in any time step across it
+/// (`integrable::kink_jump`). Checked at a low, the middle and a high speed.
+#[test]
+fn shc_dsa_second_derivatives_meet_the_second_differences() {
+    for v in [0.25, 1.0, 4.0] {
+        check(1, v, 1.0 / 16384.0);
+    }
+}
+
+#[test]
+fn a_shc_dsa_band_at_1e_9_holds_precise_values_between_its_nodes() {
+    band_holds_precise_values(
+        1,
+        0.9375,
+        1.0625,
+        Some(0.125),
+        &[0.94, 0.99, 1.0001, 1.0623],
+    );
+}
+
+/// With n itself the range [1, 1.001], the derivative of |Z|^n holds |Z|^(n−1) with an exponent
+/// reaching 0 (a jump at n = 1, none above): not carried, so refused with that reason.
 #[test]
 fn a_derivative_that_jumps_off_the_kinks_is_refused() {
     let (_, kind, base) = TABLE1[1];
+    // (the base set as a nondimensional set: P = P* at v0 = 1)
     let b = NdParams::<Interval>::parse(kind, base).unwrap();
-    let inputs = Inputs::Base {
-        base: b,
-        v0: Interval::try_from((0.99, 1.01)).unwrap(),
-    };
+    let inputs = Inputs::Nd(NdParams {
+        n: Interval::try_from((1.0, 1.001)).unwrap(),
+        ..b
+    });
     let e = curvature_over_range(kind, &inputs, &TaylorOptions::default()).unwrap_err();
     assert!(e.reason.contains("derivative jumps"), "{}", e.reason);
 }

@@ -8,7 +8,9 @@
 //! the field differentiated twice on hyper-duals (the models unchanged). D²f holds |Z|^(n−2)
 //! and |X|^(p−2) (eq:BWHCL, eq:BWMCM_nd): unbounded at the branch points but integrable along
 //! a path crossing them, which the engine's low-order step bounds, and the kink |V| makes S₂
-//! jump ([`crate::engines::taylor::integrable`]). At the separation (F = 0 crossed with
+//! jump ([`crate::engines::taylor::integrable`]), as |Z| does where n = 1 (SHC DSA: Z = 0 is
+//! crossed in its variable with the jump at Z = 0, [`crate::engines::taylor::crossing`]). At
+//! the separation (F = 0 crossed with
 //! V > 0), with G(T, u) = F(x(T, u), u) and H(T, u) = V(x(T, u), u), the implicit function
 //! theorem twice:
 //!
@@ -148,8 +150,21 @@ where
     if let Some(j) = tape.jump_off_the_kinks() {
         return Err(fail(
             &format!(
-                "the field's derivative jumps where state component {j} crosses 0 (an exponent 1, \
-                 e.g. n = 1): the second derivatives are not carried across it"
+                "the field's derivative jumps where state component {j} crosses 0 (a power of \
+                 exponent 0 or of a varying exponent): the second derivatives are not carried \
+                 across it"
+            ),
+            0.0,
+            0.0,
+        ));
+    }
+    // sgn x_j (|Z|^n with n = 1) may enter D_x f only: the jump of S₂ where x_j crosses 0
+    // ([`crate::engines::taylor::integrable::kink_jump`]) needs f itself continuous there
+    if let Some(j) = tape.sign_in_the_rates(N) {
+        return Err(fail(
+            &format!(
+                "the field itself jumps where state component {j} crosses 0 (it takes its sign): \
+                 the second derivatives are not carried across it"
             ),
             0.0,
             0.0,

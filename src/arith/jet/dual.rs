@@ -148,7 +148,11 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     fn spow(&self, q: &R) -> Self {
         // d/dx |x|^(q−1)x = q|x|^(q−1) = q·(|x|^(q−1)x)/x for x ≠ 0: no second power
         let u = Real::spow(&self.v, q);
-        let dq = if self.v.sign().is_some() {
+        let dq = if q.as_integer() == Some(1) {
+            // |x|^0·x = x: the derivative is 1 everywhere, 0 included (not |x|^0, whose own
+            // derivative 0·|x|^(−1) would put a power −1 of x on a recorded tape)
+            R::one()
+        } else if self.v.sign().is_some() {
             q.clone() * u.clone() / self.v.clone()
         } else {
             q.clone() * Real::apow(&self.v, &(q.clone() - R::one()))

@@ -13,13 +13,17 @@
 //!    step of member-dependent length Δs ∈ [0, s_a − s₀] in dx/ds = f/ẋ_j (x_j then exactly
 //!    ±s_a for every member; the time t a component);
 //! 2. Taylor windows in s to −ε, the low-order step across s ∈ [−ε, ε] (the integrals of
-//!    |x_j|^r exact), windows to s_b;
+//!    |x_j|^r exact), windows to s_b; where the tape takes sgn x_j (|Z|^n with n = 1, SHC
+//!    DSA: D_x f jumps at x_j = 0, so S₂ does, each member at its own time), two steps, to
+//!    s = 0 and from it, with the jump of S₂ between them ([`super::integrable`]'s formula on
+//!    the members' states at x_j = 0);
 //! 3. **exit**: every member from its own time t_b to the common t₁ = sup t_b by a low-order
 //!    step of length Δt ∈ [0, t₁ − t_b]; the time integration goes on from t₁.
 //!
-//! Every box the crossing passes through is checked to keep the kink components (|V|) away from
-//! 0 (their jumps of S₂ are not carried here) and the separation condition F ≤ 0 ∧ V ≥ 0 false
-//! (the separation is not inside the crossing).
+//! Every box the crossing passes through is checked to keep the kink components (|V|) and the
+//! other components whose sign the tape takes away from 0 (their jumps of S₂ are not carried
+//! here) and the separation condition F ≤ 0 ∧ V ≥ 0 false (the separation is not inside the
+//! crossing).
 
 use super::Flow;
 use super::RigorError;
@@ -65,6 +69,9 @@ fn fail(reason: &str, t: f64) -> RigorError {
         width: 0.0,
     }
 }
+
+/// 2⁵³: a multiple of 2⁻⁵³ in (−1, 0) plus 1 is a double.
+const TWO_53: f64 = 9_007_199_254_740_992.0;
 
 fn pt(x: f64) -> Interval {
     Interval::try_from((x, x)).expect("a finite double")
@@ -153,14 +160,22 @@ impl BranchWatch {
     }
 }
 
-/// The box keeps the kinks off 0 and the separation condition false (module doc).
-fn clear<const D: usize>(tape: &Tape<Interval, D>, n_state: usize, x: &[Interval]) -> bool {
+/// The box keeps the kinks and the other components whose sign the tape takes
+/// ([`Tape::sign_jumps`], all but the crossing component `j`) off 0, and the separation
+/// condition false (module doc).
+fn clear<const D: usize>(
+    tape: &Tape<Interval, D>,
+    n_state: usize,
+    j: usize,
+    x: &[Interval],
+) -> bool {
     let b: [Interval; D] = std::array::from_fn(|i| x[i]);
     let o = tape.eval(&b);
     let (f, v) = (o[D], o[D + 1]);
     let kinks_off = tape
         .kinks()
         .iter()
+        .chain(tape.sign_jumps().0.iter().filter(|&&k| k != j))
         .all(|&k| k >= n_state || !b[k].contains(0.0));
     kinks_off && (f.inf() > 0.0 || v.sup() < 0.0) && b.iter().all(|c| !c.is_empty())
 }
@@ -210,6 +225,48 @@ fn ranged_step<const E: usize>(
         });
     }
     None
+}
+
+/// The low-order step across s ∈ [−ε, ε] (labels `l_m` = 1 − ε to `l_p` = 1 + ε) in the tape in
+/// s. Where the t-tape takes sgn x_j ([`Tape::sign_jumps`]: |Z|^n with n = 1), S₂ jumps as the
+/// members cross x_j = 0, each at its own time: two steps, to s = 0 and from it, with the jump
+/// ΔS₂ = (Df_before − Df_after)·(2S̃τ′ + f̃τ′²) ([`integrable`](super::integrable)) added
+/// between them, evaluated on the members' states at s = 0 (x_j = 0 exactly). Each step's
+/// field is bounded across its end at 0 (sgn x_j over a box holding 0 is [−1, 1]).
+#[allow(clippy::too_many_arguments)]
+fn across_zero<const D: usize, const E: usize>(
+    tape: &Tape<Interval, D>,
+    wtape: &Tape<Interval, E>,
+    j: usize,
+    sg: f64,
+    l_m: f64,
+    x: &[Interval; E],
+    l_p: f64,
+) -> Option<Vec<super::step::StepOut<E>>> {
+    let lay = tape.second_order();
+    let (Some(lay), true) = (lay, tape.sign_jumps().0.contains(&j)) else {
+        return super::step::low_order_to(wtape, l_m, x, l_p).map(|a| vec![a]);
+    };
+    let to_zero = super::step::low_order_to(wtape, l_m, x, 1.0)?;
+    let mut mid = to_zero.x1;
+    // every member is at x_j = sg·(l − 1) = 0 exactly at the label l = 1 (`cross` made the
+    // entry's label exact): the jump happens at this step's end
+    if !mid[j].contains(0.0) {
+        return None;
+    }
+    mid[j] = pt(0.0);
+    let at: [Interval; D] = std::array::from_fn(|i| mid[i]);
+    // jump_of's d = Df₋ − Df₊: before the crossing x_j has the sign −sg (s < 0)
+    let d = super::integrable::sign_jump_at_zero(tape, lay, &at, j);
+    for i in 0..lay.n {
+        let di = if sg > 0.0 { d[i] } else { -d[i] };
+        mid[lay.s2(i)] = mid[lay.s2(i)] + di;
+    }
+    if !mid.iter().all(|c| c.is_common_interval()) {
+        return None;
+    }
+    let from_zero = super::step::low_order_to(wtape, 1.0, &mid, l_p)?;
+    Some(vec![to_zero, from_zero])
 }
 
 /// Crosses the branch point x_j = 0 from the set `xa` at t_a (module doc): the set at the
@@ -265,12 +322,19 @@ pub fn cross<const D: usize, const E: usize>(
     let mut steps = 0;
     // 1. entry: to the common s_a
     let s0 = sgi * xa[j];
-    let s_a = s0.sup();
+    // where S₂ jumps at x_j = 0 (sgn x_j on the tape), the label 1 + s_a exact: x_j = sg·(l − 1)
+    // exactly at every label l, 0 at l = 1 (s_a rounded up to a multiple of 2⁻⁵³: every member
+    // still moves forward to it)
+    let s_a = if tape.second_order().is_some() && tape.sign_jumps().0.contains(&j) {
+        (s0.sup() * TWO_53).ceil() / TWO_53
+    } else {
+        s0.sup()
+    };
     let ds = (pt(s_a) - s0).sup();
     let xe: [Interval; E] = std::array::from_fn(|i| if i < D { xa[i] } else { pt(t_a) });
     let (mut x_entry, y) = ranged_step(&xe, ds, &params, &in_s)
         .ok_or_else(|| fail("no entry step to a common distance", t_a))?;
-    if !clear(tape, n_state, &y) {
+    if !clear(tape, n_state, j, &y) {
         return Err(fail("a kink or the separation inside the entry", t_a));
     }
     x_entry[j] = sgi * pt(s_a);
@@ -285,24 +349,24 @@ pub fn cross<const D: usize, const E: usize>(
         return Err(fail("the set starts too near the branch point", t_a));
     }
     let w1 = win.enclose(x_entry, l_a, l_m, opts)?;
-    let across = super::step::low_order_to(&wtape, l_m, &w1.x1, l_p)
+    let across = across_zero(tape, &wtape, j, sg, l_m, &w1.x1, l_p)
         .ok_or_else(|| fail("no step across the branch point", t_a))?;
-    let w2 = win.enclose(across.x1, l_p, l_b, opts)?;
+    let w2 = win.enclose(across.last().expect("a step").x1, l_p, l_b, opts)?;
     let boxes_clear = w1
         .flow
         .pieces
         .iter()
-        .chain(std::iter::once(&across.piece))
+        .chain(across.iter().map(|a| &a.piece))
         .chain(w2.flow.pieces.iter())
         .all(|p| {
             Interval::try_from((p.t0(), p.t1()))
-                .is_ok_and(|span| clear(tape, n_state, &p.enclose(&span)))
+                .is_ok_and(|span| clear(tape, n_state, j, &p.enclose(&span)))
         })
-        && clear(tape, n_state, &across.apriori);
+        && across.iter().all(|a| clear(tape, n_state, j, &a.apriori));
     if !boxes_clear {
         return Err(fail("a kink or the separation inside the crossing", t_a));
     }
-    steps += w1.steps + 1 + w2.steps;
+    steps += w1.steps + across.len() + w2.steps;
     // 3. exit: to the common time t1
     let xb = w2.x1;
     let t1 = xb[D].sup();
@@ -315,7 +379,7 @@ pub fn cross<const D: usize, const E: usize>(
     let xbt: [Interval; E] = std::array::from_fn(|i| if i < D { xb[i] } else { pt(0.0) });
     let (x_t1, y) = ranged_step(&xbt, dt, &params, &in_t)
         .ok_or_else(|| fail("no exit step to a common time", t1))?;
-    if !clear(tape, n_state, &y) {
+    if !clear(tape, n_state, j, &y) {
         return Err(fail("a kink or the separation inside the exit", t1));
     }
     steps += 1;

@@ -32,7 +32,12 @@
 //! ΔS₂ = (Df_before − Df_after)·(2·S̃·τ′ + f̃·τ′²)
 //! ```
 //!
-//! (differentiate x(t, u) = φ⁺(t − t_c(u), φ⁻(t_c(u), u)) twice in u). A step that may cross
+//! (differentiate x(t, u) = φ⁺(t − t_c(u), φ⁻(t_c(u), u)) twice in u). The same holds where
+//! the tape takes sgn x_k of a component that is no kink ([`Tape::sign_jumps`]: eq:BWHCL's
+//! |Z|^n with n = 1, whose derivative is sgn Z, Z also in |Z|^(p−1)Z): f is continuous there
+//! too (checked: [`Tape::sign_in_the_rates`]), and the jump is evaluated on the box with
+//! x_k = 0 exactly, where the members cross (the powers of x_k are not continued across 0,
+//! sgn x_k is, as ±1). A step that may cross
 //! adds hull(0, ΔS₂) over its a-priori box and its interior times, and at its end ΔS₂ itself
 //! where every member has crossed, hull(0, ΔS₂) where some may not have (each member crosses
 //! at most once per step: f_k keeps its sign over the box, or τ′ is unbounded and the step
@@ -58,9 +63,11 @@ pub fn kink_jump<const N: usize, I: Enclosure>(
 ) -> Option<[I; N]> {
     let lay = tape.second_order()?;
     let n = lay.n;
+    let signs = tape.sign_jumps().0;
     let crossing: Vec<usize> = tape
         .kinks()
         .iter()
+        .chain(&signs)
         .copied()
         .filter(|&k| k < n && y[k].lo() <= 0.0 && y[k].hi() >= 0.0)
         .collect();
@@ -70,7 +77,11 @@ pub fn kink_jump<const N: usize, I: Enclosure>(
     let f = tape.eval(y);
     let mut total: [I; N] = std::array::from_fn(|_| I::zero());
     for k in crossing {
-        let d = jump_of(tape, lay, y, &f, k);
+        let d = if signs.contains(&k) {
+            sign_jump_at_zero(tape, lay, y, k)
+        } else {
+            jump_of(tape, lay, y, &f, k)
+        };
         let before = Real::sign(&x0[k]);
         let after = end.and_then(|e| Real::sign(&e[k]));
         let crossed = matches!((before, after), (Some(b), Some(a)) if a == -b);
@@ -125,6 +136,22 @@ fn jump_of<const N: usize, I: Enclosure>(
     };
     let (minus, plus) = (df(-1), df(1));
     (0..n).map(|i| minus[i].clone() - plus[i].clone()).collect()
+}
+
+/// [`jump_of`] for a component k of [`Tape::sign_jumps`]: the tape also takes non-analytic
+/// powers of x_k (eq:BWHCL's |Z|^(p−1)Z), which are not continued across x_k = 0, so the jump is
+/// evaluated where the members cross, on the box `y` with x_k = 0 exactly: there each side's
+/// D_x f is the one-sided limit (sgn x_k := ±1, the powers of x_k at 0 the same on both sides).
+pub fn sign_jump_at_zero<const N: usize, I: Enclosure>(
+    tape: &Tape<I, N>,
+    lay: SecondOrder,
+    y: &[I; N],
+    k: usize,
+) -> Vec<I> {
+    let mut at = y.clone();
+    at[k] = I::zero();
+    let f = tape.eval(&at);
+    jump_of(tape, lay, &at, &f, k)
 }
 
 /// The displacement's parts over the a-priori box `y` for the step of length τ1 ≥ h_lo
@@ -410,9 +437,21 @@ mod tests {
 
     /// The second variational system of ẋ = |v|, v̇ = u (v(0) = −1, x(0) = 0) in u, on
     /// hyper-duals: (x, v, u, S_x, S_v, S₂x, S₂v). Closed form: v crosses 0 at 1/u; before,
-    /// x = t − ut²/2 (∂²x/∂u² = 0), after, x = 1/u + ut²/2 − t (∂²x/∂u² = 2/u³).
-    fn kink_tape() -> Tape<Interval, 7> {
-        use crate::arith::Real;
+    /// x = t − ut²/2 (∂²x/∂u² = 0), after, x = 1/u + ut²/2 − t (∂²x/∂u² = 2/u³). |v| taken by
+    /// `abs` (v a kink) or as |v|^1 (a power: v is no kink, the tape takes sgn v,
+    /// [`Tape::sign_jumps`]).
+    fn kink_tape_of(abs: bool) -> Tape<Interval, 7> {
+        toy_tape(|vv, one| {
+            if abs {
+                Real::abs(vv)
+            } else {
+                Real::apow(vv, one)
+            }
+        })
+    }
+
+    /// ẋ = g(v), v̇ = u as a second variational system in u (`g` given v and the constant 1).
+    fn toy_tape(g: impl Fn(&H, &H) -> H) -> Tape<Interval, 7> {
         use crate::arith::jet::dual::Dual;
         let lay = SecondOrder { n: 2 };
         let mut params = [None; 7];
@@ -429,7 +468,8 @@ mod tests {
             let x = hyper(v[0].clone(), v[lay.s(0)].clone(), v[lay.s2(0)].clone());
             let vv = hyper(v[1].clone(), v[lay.s(1)].clone(), v[lay.s2(1)].clone());
             let u = hyper(v[lay.u()].clone(), c(1.0), c(0.0));
-            let f = [Real::abs(&vv) + x * H::constant(Dual::constant(c(0.0))), u];
+            let mag = g(&vv, &H::constant(Dual::constant(c(1.0))));
+            let f = [mag + x * H::constant(Dual::constant(c(0.0))), u];
             let mut o: Vec<Rec<Interval>> = f.iter().map(|q| q.v.v.clone()).collect();
             o.push(c(0.0));
             o.extend(f.iter().map(|q| q.v.d[0].clone()));
@@ -441,8 +481,31 @@ mod tests {
 
     #[test]
     fn the_second_derivative_jumps_where_a_kink_is_crossed() {
-        let tape = kink_tape();
-        assert_eq!(tape.kinks(), &[1]);
+        check_jump_across(&kink_tape_of(true));
+    }
+
+    /// The same flow with |v| as |v|^1 (SHC DSA's |Z|^n, n = 1): v is no kink, the jump comes
+    /// from [`Tape::sign_jumps`], evaluated at v = 0.
+    #[test]
+    fn the_second_derivative_jumps_where_a_sign_taking_power_is_crossed() {
+        let tape = kink_tape_of(false);
+        assert!(tape.kinks().is_empty());
+        assert_eq!(tape.sign_jumps().0, [1]);
+        check_jump_across(&tape);
+    }
+
+    /// sgn v in a rate itself (the field jumps: no jump formula for S₂) is found; sgn v in
+    /// the derivatives only (|v|^1) is not.
+    #[test]
+    fn a_sign_in_the_rates_is_found() {
+        assert_eq!(kink_tape_of(false).sign_in_the_rates(2), None);
+        assert_eq!(
+            toy_tape(|vv, _| Real::sgn(vv)).sign_in_the_rates(2),
+            Some(1)
+        );
+    }
+
+    fn check_jump_across(tape: &Tape<Interval, 7>) {
         // the set at t0 = 0.95 for u ∈ [0.99, 1.01] (before the crossing at 1/u ∈ [0.990,
         // 1.0101]): x = t0 − ut0²/2, v = −1 + ut0, S = (−t0²/2, t0), S₂ = 0
         let (u, t0) = (iv(0.99, 1.01), iv(0.95, 0.95));
@@ -460,7 +523,7 @@ mod tests {
         let us = [0.99, 0.995, 0.999, 1.001, 1.005, 1.01];
         // every member crosses by t = 1.05: ΔS₂ itself, S₂x = 2/u³ ∈ [1.94, 2.07]
         let all =
-            crate::engines::taylor::step::low_order_to(&tape, 0.95, &x0, 1.05).expect("a step");
+            crate::engines::taylor::step::low_order_to(tape, 0.95, &x0, 1.05).expect("a step");
         for &uu in &us {
             assert!(
                 all.x1[5].contains(s2x(1.05, uu)),
@@ -476,7 +539,7 @@ mod tests {
         assert!(all.x1[5].wid() < 2.0, "{:?}", all.x1[5]);
         // by t = 1 only the members u > 1 have crossed: S₂x is 0 or 2/u³
         let some =
-            crate::engines::taylor::step::low_order_to(&tape, 0.95, &x0, 1.0).expect("a step");
+            crate::engines::taylor::step::low_order_to(tape, 0.95, &x0, 1.0).expect("a step");
         for &uu in &us {
             assert!(
                 some.x1[5].contains(s2x(1.0, uu)),

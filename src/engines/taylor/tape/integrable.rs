@@ -57,11 +57,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
             .collect()
     }
 
-    /// A node of a state component w whose value jumps where w = 0 (sgn(w), a power of
-    /// exponent 0) or whose exponent is not known to be away from 0 (a variable exponent),
-    /// w not a kink: the field's derivative there has a jump that only the kinks' formula
-    /// carries (|Z|^n with n = 1 recorded as a power, its derivative sgn Z) — a second
-    /// variational system cannot cross it. Returns the component.
+    /// A node of a state component w whose value jumps where w = 0 (a power of exponent 0) or
+    /// whose exponent is not known to be away from 0 (a variable exponent), w not a kink: the
+    /// field's derivative there has a jump that neither the kinks' formula nor
+    /// [`Tape::sign_jumps`] carries — a second variational system cannot cross it. Returns the
+    /// component.
     pub fn jump_off_the_kinks(&self) -> Option<usize> {
         let var = |a: usize| match self.ops[a] {
             Op::Var(j) => Some(j),
@@ -69,7 +69,6 @@ impl<R: Real, const N: usize> Tape<R, N> {
         };
         self.ops.iter().find_map(|op| {
             let j = match *op {
-                Op::Sign(a) => var(a),
                 Op::Spow(a, q) | Op::Apow(a, q) | Op::Twin(a, q, _, _) => {
                     let r = &self.consts[q];
                     var(a).filter(|_| r.lo() <= 0.0 && r.hi() >= 0.0)
@@ -78,6 +77,47 @@ impl<R: Real, const N: usize> Tape<R, N> {
                 _ => None,
             }?;
             (!self.kinks.contains(&j)).then_some(j)
+        })
+    }
+
+    /// The state components w, not kinks, of which the tape takes sgn(w): the derivative of
+    /// |w| (eq:BWHCL's |Z|^n with n = 1) in a second variational system. Where w crosses 0
+    /// there, S₂ jumps as at a kink ([`crate::engines::taylor::integrable::kink_jump`], the
+    /// jump evaluated at w = 0); `(components, nodes)`.
+    pub fn sign_jumps(&self) -> (Vec<usize>, Vec<usize>) {
+        let (mut comps, mut nodes) = (Vec::new(), Vec::new());
+        for (i, op) in self.ops.iter().enumerate() {
+            if let Op::Sign(a) = *op
+                && let Op::Var(j) = self.ops[a]
+                && !self.kinks.contains(&j)
+            {
+                nodes.push(i);
+                if !comps.contains(&j) {
+                    comps.push(j);
+                }
+            }
+        }
+        comps.sort_unstable();
+        (comps, nodes)
+    }
+
+    /// A state component, kink or not, whose sign enters the rates of the first `n` state
+    /// components themselves (not only their derivatives): the field jumps there, and the
+    /// jump of S₂ ([`crate::engines::taylor::integrable::kink_jump`]) assumes a continuous
+    /// field. `None` when every sgn enters the derivatives only (|V|, |Z|^n with n = 1).
+    pub fn sign_in_the_rates(&self, n: usize) -> Option<usize> {
+        (0..self.ops.len()).find_map(|i| {
+            let Op::Sign(a) = self.ops[i] else {
+                return None;
+            };
+            let Op::Var(j) = self.ops[a] else {
+                return None;
+            };
+            let degs = self.field_degrees(&[i]);
+            degs[..n.min(N)]
+                .iter()
+                .any(|d| *d != Degree::Free)
+                .then_some(j)
         })
     }
 
