@@ -148,9 +148,11 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     fn spow(&self, q: &R) -> Self {
         // d/dx |x|^(q−1)x = q|x|^(q−1) = q·(|x|^(q−1)x)/x for x ≠ 0: no second power
         let u = Real::spow(&self.v, q);
-        let dq = if q.as_integer() == Some(1) {
+        let dq = if q.identical(&R::one()) {
             // |x|^0·x = x: the derivative is 1 everywhere, 0 included (not |x|^0, whose own
-            // derivative 0·|x|^(−1) would put a power −1 of x on a recorded tape)
+            // derivative 0·|x|^(−1) would put a power −1 of x on a recorded tape). `identical`,
+            // not the value alone: an exponent 1 with derivative parts (on hyper-duals, the
+            // differentiated input itself) takes the general form, whose derivative in q it is
             R::one()
         } else if self.v.sign().is_some() {
             q.clone() * u.clone() / self.v.clone()
@@ -162,7 +164,7 @@ impl<R: Real, const M: usize> Scalar<R> for Dual<R, M> {
     fn apow(&self, q: &R) -> Self {
         // d/dx |x|^q = q|x|^(q−2)x = q·|x|^q/x (x ≠ 0), q·spow(x, q − 1) (q > 1), sign(x) (q = 1)
         let u = Real::apow(&self.v, q);
-        let dq = if q.as_integer() == Some(1) {
+        let dq = if q.identical(&R::one()) {
             match self.v.sign() {
                 Some(s) => R::from_int(s as i64),
                 None => Real::sgn(&self.v),

@@ -160,13 +160,14 @@ impl BranchWatch {
     }
 }
 
-/// The box keeps the kinks and the other components whose sign the tape takes
-/// ([`Tape::sign_jumps`], all but the crossing component `j`) off 0, and the separation
-/// condition false (module doc).
+/// The box keeps the kinks and the components whose sign the tape takes ([`Tape::sign_jumps`],
+/// but for `except`: the crossing component inside the crossing in s, whose jump
+/// [`across_zero`] adds) off 0, and the separation condition false (module doc). The entry and
+/// exit steps in time carry no jump: there the crossing component too must stay off 0.
 fn clear<const D: usize>(
     tape: &Tape<Interval, D>,
     n_state: usize,
-    j: usize,
+    except: Option<usize>,
     x: &[Interval],
 ) -> bool {
     let b: [Interval; D] = std::array::from_fn(|i| x[i]);
@@ -175,7 +176,7 @@ fn clear<const D: usize>(
     let kinks_off = tape
         .kinks()
         .iter()
-        .chain(tape.sign_jumps().0.iter().filter(|&&k| k != j))
+        .chain(tape.sign_jumps().0.iter().filter(|&&k| Some(k) != except))
         .all(|&k| k >= n_state || !b[k].contains(0.0));
     kinks_off && (f.inf() > 0.0 || v.sup() < 0.0) && b.iter().all(|c| !c.is_empty())
 }
@@ -334,7 +335,7 @@ pub fn cross<const D: usize, const E: usize>(
     let xe: [Interval; E] = std::array::from_fn(|i| if i < D { xa[i] } else { pt(t_a) });
     let (mut x_entry, y) = ranged_step(&xe, ds, &params, &in_s)
         .ok_or_else(|| fail("no entry step to a common distance", t_a))?;
-    if !clear(tape, n_state, j, &y) {
+    if !clear(tape, n_state, None, &y) {
         return Err(fail("a kink or the separation inside the entry", t_a));
     }
     x_entry[j] = sgi * pt(s_a);
@@ -360,9 +361,11 @@ pub fn cross<const D: usize, const E: usize>(
         .chain(w2.flow.pieces.iter())
         .all(|p| {
             Interval::try_from((p.t0(), p.t1()))
-                .is_ok_and(|span| clear(tape, n_state, j, &p.enclose(&span)))
+                .is_ok_and(|span| clear(tape, n_state, Some(j), &p.enclose(&span)))
         })
-        && across.iter().all(|a| clear(tape, n_state, j, &a.apriori));
+        && across
+            .iter()
+            .all(|a| clear(tape, n_state, Some(j), &a.apriori));
     if !boxes_clear {
         return Err(fail("a kink or the separation inside the crossing", t_a));
     }
@@ -379,7 +382,7 @@ pub fn cross<const D: usize, const E: usize>(
     let xbt: [Interval; E] = std::array::from_fn(|i| if i < D { xb[i] } else { pt(0.0) });
     let (x_t1, y) = ranged_step(&xbt, dt, &params, &in_t)
         .ok_or_else(|| fail("no exit step to a common time", t1))?;
-    if !clear(tape, n_state, j, &y) {
+    if !clear(tape, n_state, None, &y) {
         return Err(fail("a kink or the separation inside the exit", t1));
     }
     steps += 1;

@@ -495,14 +495,21 @@ mod tests {
     }
 
     /// sgn v in a rate itself (the field jumps: no jump formula for S₂) is found; sgn v in
-    /// the derivatives only (|v|^1) is not.
+    /// the derivatives only (|v|^1) is not, and is a jump of S₂; sgn v in the second
+    /// derivatives only (|v|·v: D_x f = 2|v| is continuous; the tape takes sgn v in D²f) is
+    /// neither.
     #[test]
-    fn a_sign_in_the_rates_is_found() {
-        assert_eq!(kink_tape_of(false).sign_in_the_rates(2), None);
+    fn signs_are_told_by_where_they_enter() {
+        let abs1 = kink_tape_of(false);
+        assert_eq!(abs1.sign_in_the_rates(2), None);
+        assert_eq!(abs1.sign_jumps().0, [1]);
         assert_eq!(
             toy_tape(|vv, _| Real::sgn(vv)).sign_in_the_rates(2),
             Some(1)
         );
+        let sq = toy_tape(|vv, one| Real::spow(vv, &(one.clone() + one.clone())));
+        assert_eq!(sq.sign_in_the_rates(2), None);
+        assert!(sq.sign_jumps().0.is_empty(), "{:?}", sq.sign_jumps());
     }
 
     fn check_jump_across(tape: &Tape<Interval, 7>) {

@@ -80,16 +80,26 @@ impl<R: Real, const N: usize> Tape<R, N> {
         })
     }
 
-    /// The state components w, not kinks, of which the tape takes sgn(w): the derivative of
-    /// |w| (eq:BWHCL's |Z|^n with n = 1) in a second variational system. Where w crosses 0
-    /// there, S₂ jumps as at a kink ([`crate::engines::taylor::integrable::kink_jump`], the
-    /// jump evaluated at w = 0); `(components, nodes)`.
+    /// The state components w, not kinks, of which the tape takes sgn(w) in D_x f: the
+    /// derivative of |w| (eq:BWHCL's |Z|^n with n = 1) in a second variational system (with
+    /// its layout, the sgn nodes that reach the rates of S; a sgn in D²f only, e.g. of
+    /// |X|·X with p = 2, makes no jump of S₂). Where w crosses 0 there, S₂ jumps as at a kink
+    /// ([`crate::engines::taylor::integrable::kink_jump`], the jump evaluated at w = 0);
+    /// `(components, nodes)`.
     pub fn sign_jumps(&self) -> (Vec<usize>, Vec<usize>) {
         let (mut comps, mut nodes) = (Vec::new(), Vec::new());
+        let in_df = |i: usize| match self.second_order {
+            Some(lay) => {
+                let degs = self.field_degrees(&[i]);
+                (0..lay.n).any(|c| degs[lay.s(c)] != Degree::Free)
+            }
+            None => true,
+        };
         for (i, op) in self.ops.iter().enumerate() {
             if let Op::Sign(a) = *op
                 && let Op::Var(j) = self.ops[a]
                 && !self.kinks.contains(&j)
+                && in_df(i)
             {
                 nodes.push(i);
                 if !comps.contains(&j) {
