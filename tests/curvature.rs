@@ -233,3 +233,20 @@ fn a_derivative_that_jumps_off_the_kinks_is_refused() {
     let e = curvature_over_range(kind, &inputs, &TaylorOptions::default()).unwrap_err();
     assert!(e.reason.contains("derivative jumps"), "{}", e.reason);
 }
+
+/// A base set with n itself the range: the hyper-dual of v0^(2n/(p+1)) has an unbounded second
+/// derivative in n at record time — a reason, not a panic.
+#[test]
+fn a_set_whose_second_derivatives_are_unbounded_is_refused_not_a_panic() {
+    let (_, kind, base) = TABLE1[1];
+    let b = NdParams::<Interval>::parse(kind, base).unwrap();
+    let inputs = Inputs::Base {
+        base: NdParams {
+            n: Interval::try_from((1.0, 1.001)).unwrap(),
+            ..b
+        },
+        v0: Interval::try_from((1.0, 1.0)).unwrap(),
+    };
+    let e = curvature_over_range(kind, &inputs, &TaylorOptions::default()).unwrap_err();
+    assert!(e.reason.contains("not bounded"), "{}", e.reason);
+}

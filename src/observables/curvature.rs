@@ -112,6 +112,9 @@ where
         },
         d: [Dual { v: b, d: [d] }],
     };
+    // the set validated as intervals above; on hyper-duals a derivative may still be unbounded
+    // (∂²/∂n² of v0^(2n/(p+1)) for a base set at v0 = 1): an error, not a panic
+    let mut recorded = Ok(());
     let tape = Tape::<Interval, D>::record_with(params, |v| {
         let hv: Vec<H> = (0..vals.len())
             .map(|i| {
@@ -122,10 +125,13 @@ where
                 }
             })
             .collect();
-        let nd = inputs
-            .with_values(hv)
-            .nd(kind)
-            .expect("validated as intervals");
+        let nd = match inputs.with_values(hv).nd(kind) {
+            Ok(nd) => nd,
+            Err(e) => {
+                recorded = Err(e);
+                return vec![c(zero); D + 6];
+            }
+        };
         let m = build(nd);
         let xs: [H; N] =
             std::array::from_fn(|i| hyper(v[i].clone(), v[lay.s(i)].clone(), v[lay.s2(i)].clone()));
@@ -147,6 +153,21 @@ where
         o
     })
     .with_second_order(lay);
+    if let Err(e) = recorded {
+        return Err(fail(
+            &format!(
+                "the second derivatives in {} are not bounded at the set ({})",
+                inputs
+                    .names()
+                    .get(ju)
+                    .copied()
+                    .unwrap_or("the ranged input"),
+                e.0
+            ),
+            0.0,
+            0.0,
+        ));
+    }
     if let Some(j) = tape.jump_off_the_kinks() {
         return Err(fail(
             &format!(
