@@ -13,7 +13,7 @@ use bwcl::observables::decimal::Rounding;
 use inari::Interval;
 
 /// The columns: on [v0_lo, v0_hi], e(v0) ∈ e(v0_lo)·(v0_hi − v0)/h + e(v0_hi)·(v0 − v0_lo)/h
-/// − [d2e]·(v0 − v0_lo)(v0_hi − v0)/2 (h = v0_hi − v0_lo), T_s likewise.
+/// − \[d2e\]·(v0 − v0_lo)(v0_hi − v0)/2 (h = v0_hi − v0_lo), T_s likewise.
 pub const HEAD: [&str; 15] = [
     "v0_lo",
     "v0_hi",

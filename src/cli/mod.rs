@@ -74,7 +74,7 @@ fn report(message: &str) {
     note(&format!("bwcl: error: {}", error_line(message)));
 }
 
-/// A message as the one line [`report`] prints after "bwcl: error: ".
+/// A message as the one line `report` prints after "bwcl: error: ".
 pub fn error_line(message: &str) -> String {
     // a message is one line by construction, its user values escaped; fold any stray
     // whitespace and escape any stray control character to keep it so

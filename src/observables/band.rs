@@ -120,7 +120,7 @@ pub const MAX_SUB_CENTRES: usize = 16;
 /// (range + m·point)/w with w ∝ m^(1/2.4), is least near m = 4 for a range run of 6 point
 /// runs; measured on [0.1, 5] at 1e-6 (SHC DSS, Maxwell DSA): aim 2.5 took 57.7 s and 56.8 s,
 /// aim 4 61.7 s and 59.9 s, aim 6 64.5 s and 62.4 s (the cut tends to over-cut, see
-/// [`THICKNESS_POWER`]).
+/// `THICKNESS_POWER`).
 pub const AIM: f64 = 2.5;
 
 /// The thickness of a proved piece grows like its width to this power (measured on the four

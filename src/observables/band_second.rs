@@ -155,7 +155,7 @@ impl InterpBand {
 }
 
 /// The band's options: the target thickness, the first pieces' width (at v0 ≥ 1; ∝ v0 below,
-/// [`first_guess`]), the narrowest piece, a progress display.
+/// `first_guess`), the narrowest piece, a progress display.
 #[derive(Clone, Debug)]
 pub struct InterpOptions {
     pub thickness: f64,
@@ -408,8 +408,8 @@ fn walk(
 }
 
 /// Proves the band of e (and T_s) over v0 ∈ [a, b] for base set `base` in the interpolation
-/// form (module doc), thickness at most `io.thickness`: [a, b] cut into [`segments`], walked in
-/// parallel, each piece's width adapted to the nodes its neighbour needed ([`walk`]). Fails
+/// form (module doc), thickness at most `io.thickness`: [a, b] cut into `segments`, walked in
+/// parallel, each piece's width adapted to the nodes its neighbour needed (`walk`). Fails
 /// with a piece that cannot be proved down to `io.min_width` (the other segments then stop).
 pub fn prove_band_second(
     kind: ModelKind,

@@ -229,7 +229,7 @@ pub(super) fn param_error(e: ParamError) -> RigorError {
 /// (hull ∩ mean-value form, and with one range its slopes). One range whose crossing at T_s is
 /// not transversal (F and its time derivative vanish together, as in the Hunt–Crossley limit,
 /// where F = |X|^p(1 − σV) at X = 0, so dT_s/du = −F_u/F_t is 0/0): e by
-/// [`partial_form`], T_s by its hull, no slope. Where no derivative can be carried — the
+/// `partial_form`, T_s by its hull, no slope. Where no derivative can be carried — the
 /// S block grows too wide, or ∂f/∂u is unbounded near a branch point (n → 1:
 /// ∂(|Z|^(n−1)Z)/∂n = |Z|^(n−1)Z·ln|Z|), or several ranges and a crossing that is not
 /// transversal — the parameters as components alone: the hull, with no slope.

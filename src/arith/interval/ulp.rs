@@ -389,7 +389,7 @@ fn div_at_zero(a: f64, b: f64, c: f64, d: f64) -> Ulp {
 impl Div for Ulp {
     type Output = Self;
     /// For a divisor of certain sign, [min, max] of the endpoint quotients, each rounded in its
-    /// direction; for a divisor with an end at 0 the half-line of [`div_at_zero`], [−∞, +∞]
+    /// direction; for a divisor with an end at 0 the half-line of `div_at_zero`, [−∞, +∞]
     /// when it lies across 0.
     #[inline]
     fn div(self, o: Self) -> Self {

@@ -138,10 +138,11 @@ fn jump_of<const N: usize, I: Enclosure>(
     (0..n).map(|i| minus[i].clone() - plus[i].clone()).collect()
 }
 
-/// [`jump_of`] for a component k of [`Tape::sign_jumps`]: the tape also takes non-analytic
-/// powers of x_k (eq:BWHCL's |Z|^(p−1)Z), which are not continued across x_k = 0, so the jump is
-/// evaluated where the members cross, on the box `y` with x_k = 0 exactly: there each side's
-/// D_x f is the one-sided limit (sgn x_k := ±1, the powers of x_k at 0 the same on both sides).
+/// `jump_of` (ΔS₂ at a kink) for a component k of [`Tape::sign_jumps`]: the tape also takes
+/// non-analytic powers of x_k (eq:BWHCL's |Z|^(p−1)Z), which are not continued across x_k = 0,
+/// so the jump is evaluated where the members cross, on the box `y` with x_k = 0 exactly: there
+/// each side's D_x f is the one-sided limit (sgn x_k := ±1, the powers of x_k at 0 the same on
+/// both sides).
 pub fn sign_jump_at_zero<const N: usize, I: Enclosure>(
     tape: &Tape<I, N>,
     lay: SecondOrder,

@@ -50,7 +50,7 @@ pub(super) fn integrate_tape<I: Enclosure, const N: usize>(
     }
 }
 
-/// Where a run of [`integrate_tape_until`] ended.
+/// Where a run of `integrate_tape_until` ended.
 pub enum Ended<const N: usize, I> {
     /// At the separation event, proved.
     Separated(Flow<N, I>, SeparationEvent<N, I>),

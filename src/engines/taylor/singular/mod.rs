@@ -71,7 +71,7 @@ pub struct SingularOptions {
     /// arithmetic (each fixes the terms of at least one more order), after the truncated ones.
     pub iterations: usize,
     /// Precede them by plain iterations cut off at exponents 1, 2, …, ⌈M⌉ − 1 (see
-    /// [`validate`]).
+    /// `validate`).
     pub truncated_iterations: bool,
     /// Plain iterations of the start step ([`start`]), all in the full arithmetic (truncated
     /// ones measured no faster there: its factored components' widths need the full
@@ -145,7 +145,7 @@ impl Default for SingularOptions {
 impl SingularOptions {
     /// The tunables for intervals whose ends have machine epsilon `eps`, the engine's
     /// tolerance per step `tol`: the defaults at f64 precision (eps ≥ 2⁻⁵²); at higher
-    /// precision the remainder ∝ δ^M must fall below `tol` (see [`high_precision`]).
+    /// precision the remainder ∝ δ^M must fall below `tol` (see `high_precision`).
     pub fn at_precision(eps: f64, tol: f64) -> Self {
         if eps >= f64::EPSILON {
             Self::default()
@@ -693,7 +693,7 @@ fn exit_estimate<I: Enclosure>(t: &Gts<I>, t1: f64, delta: f64) -> Option<f64> {
 ///
 /// The set is carried by the mean-value form, as a Taylor step carries it: with c the
 /// set's centre, φ(x) ∈ φ(c) + J·(x − c), where φ(c) is the point's flow by the expansions
-/// ([`cross_point`]) and J encloses the flow's Jacobian over the set from the variational
+/// (`cross_point`) and J encloses the flow's Jacobian over the set from the variational
 /// equation Φ′ = Df(x(t))Φ, Φ(t₀) = I, on the a-priori box Y ⊇ x(t) of a low-order step:
 /// ‖Φ(t) − I‖_∞ ≤ e^(‖Df(Y)‖_∞ τ) − 1 (Grönwall), then Φ(t₁) ∈ I + τ₁·Df(Y)·(I + [−ε, ε]).
 /// Df(Y) is evaluated on duals; at a kink of |·| its derivative is [−1, 1] (Clarke's), so the

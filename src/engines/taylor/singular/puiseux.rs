@@ -385,7 +385,7 @@ impl<I: Enclosure> Ctx<I> {
     /// (at least 1, at most M): every term above goes into the remainder by its range
     /// c·[0, δ^α], as those above M do — as sound as the full context, and as cheap as the
     /// smaller basis it uses. For the plain iterations of a fixed point, which fix the terms
-    /// one unit of exponent further each ([`super::validate`]): those above have no value yet.
+    /// one unit of exponent further each (`super::validate`): those above have no value yet.
     pub fn truncated(self: &Arc<Self>, m: f64) -> Arc<Self> {
         let m = m.max(1.0);
         if m >= self.cut {
@@ -584,7 +584,7 @@ impl<I: Enclosure> Gts<I> {
         I::from_jet(r)
     }
 
-    /// The value at u ∈ `u` (an interval inside the domain), summed as [`Gts::poly_range`].
+    /// The value at u ∈ `u` (an interval inside the domain), summed as `Gts::poly_range`.
     pub fn eval(&self, u: &I) -> I {
         let p = match (&self.ctx, self.terms.last()) {
             (Some(ctx), Some((last, _))) => ctx.powers(u, *last as usize),
@@ -609,7 +609,7 @@ impl<I: Enclosure> Gts<I> {
 
     /// The value and the derivative in u of the midpoint expansion (midpoint coefficients
     /// and exponents, the remainder's midpoint) at a double u > 0, in f64: an estimate, for
-    /// choosing where the rigorous evaluations look ([`super::exit_parameter`]).
+    /// choosing where the rigorous evaluations look (`super::exit_parameter`).
     pub fn mid_value_slope(&self, u: f64) -> (f64, f64) {
         let (mut v, mut d) = (self.rem.mid(), 0.0);
         for (i, c) in &self.terms {
@@ -673,7 +673,7 @@ impl<I: Enclosure> Gts<I> {
     }
 
     /// Whether `self`'s set lies in `other`'s, decided coefficientwise (the fixed-point test
-    /// T(S) ⊆ S of [`super::validate`]): true only when
+    /// T(S) ⊆ S of `super::validate`): true only when
     /// - both are values on one basis and domain ([`Ctx::same_domain`]; a value without a
     ///   context has the constant term only, the same function on every domain), and
     /// - for every key of either value, `self`'s coefficient lies in `other`'s, a key that one

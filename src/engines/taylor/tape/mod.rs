@@ -15,16 +15,16 @@
 //!
 //! Two identities of the models' fields save sums per order (the tape finds them; the model is
 //! written as before): a power |w|^(q−1)w whose derivative q|w|^(q−1)ẇ the field computes as a
-//! product anyway is that product's integral ([`shortcuts::integral_powers`]: Maxwell's
+//! product anyway is that product's integral (`shortcuts::integral_powers`: Maxwell's
 //! |Y|^(p−1)Y and |Z|^(p−1)Z), and a product of the other power of one series with x or |x| is
-//! an earlier product with a sign ([`shortcuts::sign_copies`]: the hysteretic rate's
+//! an earlier product with a sign (`shortcuts::sign_copies`: the hysteretic rate's
 //! |Z|^(n−1)Z·|V| and |Z|^n·V). Measured on the 28 Table 1 cases (2026-11-26, 3 alternating
 //! runs): the integrals, Maxwell per-case time 0.908–0.956 (pieces and widths change a little:
 //! the Y-jets' remainders are narrower); the sign copies, median 0.985, the same enclosures bit
 //! for bit.
 //!
 //! A fused form that sums a product and its sign copy takes them as one term
-//! (c + s·c′)·P ([`merges::lin_merges`]): the hysteretic rate β|V||Z|^(n−1)Z + γV|Z|^n is
+//! (c + s·c′)·P (`merges::lin_merges`): the hysteretic rate β|V||Z|^(n−1)Z + γV|Z|^n is
 //! (β·s + γ)·V|Z|^n, and with β ≈ −γ (|β + γ| ≈ 0.01 in every Table 1 set) the two terms
 //! nearly cancel while loading. Summed one by one over an a-priori box, their widths add up and
 //! the recurrences compound them order by order: the remainder coefficient x_K(Y) of SHC DSS
