@@ -29,7 +29,7 @@ use super::Flow;
 use super::RigorError;
 use super::options::TaylorOptions;
 use super::rec::Rec;
-use super::tape::Tape;
+use super::tape::{SecondOrder, Tape};
 use super::window::Window;
 use crate::arith::Real;
 use inari::Interval;
@@ -228,24 +228,31 @@ fn ranged_step<const E: usize>(
     None
 }
 
+/// The layout of the second variational system where S₂ jumps as the members cross x_j = 0
+/// (the t-tape takes sgn x_j, [`Tape::sign_jumps`]: |Z|^n with n = 1), else `None`.
+fn jump_at_zero<const D: usize>(tape: &Tape<Interval, D>, j: usize) -> Option<SecondOrder> {
+    tape.second_order()
+        .filter(|_| tape.sign_jumps().0.contains(&j))
+}
+
 /// The low-order step across s ∈ [−ε, ε] (labels `l_m` = 1 − ε to `l_p` = 1 + ε) in the tape in
-/// s. Where the t-tape takes sgn x_j ([`Tape::sign_jumps`]: |Z|^n with n = 1), S₂ jumps as the
-/// members cross x_j = 0, each at its own time: two steps, to s = 0 and from it, with the jump
-/// ΔS₂ = (Df_before − Df_after)·(2S̃τ′ + f̃τ′²) ([`integrable`](super::integrable)) added
-/// between them, evaluated on the members' states at s = 0 (x_j = 0 exactly). Each step's
-/// field is bounded across its end at 0 (sgn x_j over a box holding 0 is [−1, 1]).
+/// s. Where S₂ jumps at x_j = 0 (`jump`, [`jump_at_zero`]), each member at its own time: two
+/// steps, to s = 0 and from it, with the jump ΔS₂ = (Df_before − Df_after)·(2S̃τ′ + f̃τ′²)
+/// ([`integrable`](super::integrable)) added between them, evaluated on the members' states at
+/// s = 0 (x_j = 0 exactly). Each step's field is bounded across its end at 0 (sgn x_j over a
+/// box holding 0 is [−1, 1]).
 #[allow(clippy::too_many_arguments)]
 fn across_zero<const D: usize, const E: usize>(
     tape: &Tape<Interval, D>,
     wtape: &Tape<Interval, E>,
+    jump: Option<SecondOrder>,
     j: usize,
     sg: f64,
     l_m: f64,
     x: &[Interval; E],
     l_p: f64,
 ) -> Option<Vec<super::step::StepOut<E>>> {
-    let lay = tape.second_order();
-    let (Some(lay), true) = (lay, tape.sign_jumps().0.contains(&j)) else {
+    let Some(lay) = jump else {
         return super::step::low_order_to(wtape, l_m, x, l_p).map(|a| vec![a]);
     };
     let to_zero = super::step::low_order_to(wtape, l_m, x, 1.0)?;
@@ -326,7 +333,8 @@ pub fn cross<const D: usize, const E: usize>(
     // where S₂ jumps at x_j = 0 (sgn x_j on the tape), the label 1 + s_a exact: x_j = sg·(l − 1)
     // exactly at every label l, 0 at l = 1 (s_a rounded up to a multiple of 2⁻⁵³: every member
     // still moves forward to it)
-    let s_a = if tape.second_order().is_some() && tape.sign_jumps().0.contains(&j) {
+    let jump = jump_at_zero(tape, j);
+    let s_a = if jump.is_some() {
         (s0.sup() * TWO_53).ceil() / TWO_53
     } else {
         s0.sup()
@@ -350,7 +358,7 @@ pub fn cross<const D: usize, const E: usize>(
         return Err(fail("the set starts too near the branch point", t_a));
     }
     let w1 = win.enclose(x_entry, l_a, l_m, opts)?;
-    let across = across_zero(tape, &wtape, j, sg, l_m, &w1.x1, l_p)
+    let across = across_zero(tape, &wtape, jump, j, sg, l_m, &w1.x1, l_p)
         .ok_or_else(|| fail("no step across the branch point", t_a))?;
     let w2 = win.enclose(across.last().expect("a step").x1, l_p, l_b, opts)?;
     let boxes_clear = w1
@@ -409,15 +417,24 @@ mod tests {
     /// ż = u, ẏ = |z|^(−1/2) (z the branch component, u ∈ `u` a parameter), the outputs F
     /// and V the constants `fv`.
     fn closed_form(u: Interval, fv: (f64, f64)) -> Tape<Interval, 3> {
+        closed_form_with(u, |_| c(fv.0), fv.1)
+    }
+
+    /// [`closed_form`] with F = `force`(z), V = `v`.
+    fn closed_form_with(
+        u: Interval,
+        force: impl Fn(&Rec<Interval>) -> Rec<Interval>,
+        v: f64,
+    ) -> Tape<Interval, 3> {
         let mut params = [None; 3];
         params[2] = Some(u);
-        Tape::<Interval, 3>::record_with(params, |v| {
+        Tape::<Interval, 3>::record_with(params, |x| {
             vec![
-                v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
-                Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
+                x[2].clone() + x[0].scale(&iv(0.0, 0.0)),
+                Scalar::<Interval>::apow(&x[0], &iv(-0.5, -0.5)),
                 c(0.0),
-                c(fv.0),
-                c(fv.1),
+                force(&x[0]),
+                c(v),
             ]
         })
     }
@@ -535,17 +552,7 @@ mod tests {
     /// once z ≥ −0.005, inside the windows in s: refused by their boxes' check.
     #[test]
     fn a_separation_inside_the_windows_in_s_is_refused() {
-        let mut params = [None; 3];
-        params[2] = Some(iv(0.9, 1.1));
-        let tape = Tape::<Interval, 3>::record_with(params, |v| {
-            vec![
-                v[2].clone() + v[0].scale(&iv(0.0, 0.0)),
-                Scalar::<Interval>::apow(&v[0], &iv(-0.5, -0.5)),
-                c(0.0),
-                c(-0.005) - v[0].clone(),
-                c(1.0),
-            ]
-        });
+        let tape = closed_form_with(iv(0.9, 1.1), |z| c(-0.005) - z.clone(), 1.0);
         let r = refused::<3, 4>(&tape, [iv(-0.012, -0.010), iv(0.0, 0.0), iv(0.9, 1.1)]);
         assert!(r.contains("separation inside the crossing"), "{r}");
     }

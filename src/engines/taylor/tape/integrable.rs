@@ -89,18 +89,11 @@ impl<R: Real, const N: usize> Tape<R, N> {
     pub fn sign_jumps(&self) -> (Vec<usize>, Vec<usize>) {
         let (mut comps, mut nodes) = (Vec::new(), Vec::new());
         let in_df = |i: usize| match self.second_order {
-            Some(lay) => {
-                let degs = self.field_degrees(&[i]);
-                (0..lay.n).any(|c| degs[lay.s(c)] != Degree::Free)
-            }
+            Some(lay) => self.reaches(i, (0..lay.n).map(|c| lay.s(c))),
             None => true,
         };
-        for (i, op) in self.ops.iter().enumerate() {
-            if let Op::Sign(a) = *op
-                && let Op::Var(j) = self.ops[a]
-                && !self.kinks.contains(&j)
-                && in_df(i)
-            {
+        for (i, j) in self.signs_of_state() {
+            if !self.kinks.contains(&j) && in_df(i) {
                 nodes.push(i);
                 if !comps.contains(&j) {
                     comps.push(j);
@@ -116,19 +109,25 @@ impl<R: Real, const N: usize> Tape<R, N> {
     /// jump of S₂ ([`crate::engines::taylor::integrable::kink_jump`]) assumes a continuous
     /// field. `None` when every sgn enters the derivatives only (|V|, |Z|^n with n = 1).
     pub fn sign_in_the_rates(&self, n: usize) -> Option<usize> {
-        (0..self.ops.len()).find_map(|i| {
-            let Op::Sign(a) = self.ops[i] else {
-                return None;
-            };
-            let Op::Var(j) = self.ops[a] else {
-                return None;
-            };
-            let degs = self.field_degrees(&[i]);
-            degs[..n.min(N)]
-                .iter()
-                .any(|d| *d != Degree::Free)
-                .then_some(j)
+        self.signs_of_state()
+            .find_map(|(i, j)| self.reaches(i, 0..n.min(N)).then_some(j))
+    }
+
+    /// The nodes sgn(x_j) of a state component x_j: (node, j).
+    fn signs_of_state(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.ops.iter().enumerate().filter_map(|(i, op)| match *op {
+            Op::Sign(a) => match self.ops[a] {
+                Op::Var(j) => Some((i, j)),
+                _ => None,
+            },
+            _ => None,
         })
+    }
+
+    /// Whether node `i` enters one of the field components `outputs`.
+    fn reaches(&self, i: usize, mut outputs: impl Iterator<Item = usize>) -> bool {
+        let degs = self.field_degrees(&[i]);
+        outputs.any(|c| degs[c] != Degree::Free)
     }
 
     /// Per field component, how it depends on `nodes`: [`Degree::Affine`] only through sums,
