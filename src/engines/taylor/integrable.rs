@@ -74,13 +74,14 @@ pub fn kink_jump<const N: usize, I: Enclosure>(
     if crossing.is_empty() {
         return None;
     }
-    let f = tape.eval(y);
+    // f over the box, for the kinks' formula only (a sign component's jump is evaluated at 0)
+    let mut f = None;
     let mut total: [I; N] = std::array::from_fn(|_| I::zero());
     for k in crossing {
         let d = if signs.contains(&k) {
             sign_jump_at_zero(tape, lay, y, k)
         } else {
-            jump_of(tape, lay, y, &f, k)
+            jump_of(tape, lay, y, f.get_or_insert_with(|| tape.eval(y)), k)
         };
         let before = Real::sign(&x0[k]);
         let after = end.and_then(|e| Real::sign(&e[k]));
@@ -337,6 +338,7 @@ pub fn step<const N: usize, I: Enclosure>(
 mod tests {
     use super::*;
     use crate::arith::Scalar;
+    use crate::engines::taylor::op::Op;
     use crate::engines::taylor::rec::Rec;
     use inari::Interval;
 
@@ -511,6 +513,61 @@ mod tests {
         let sq = toy_tape(|vv, one| Real::spow(vv, &(one.clone() + one.clone())));
         assert_eq!(sq.sign_in_the_rates(2), None);
         assert!(sq.sign_jumps().0.is_empty(), "{:?}", sq.sign_jumps());
+    }
+
+    /// A switch on an expression, |v − 1|, is found (its S₂ jump at v = 1 is carried by
+    /// nothing); a switch on a state component, |v| or |v|^1, and an entire power, v², are not.
+    #[test]
+    fn a_switch_on_an_expression_is_found() {
+        let shifted = toy_tape(|vv, one| Real::abs(&(vv.clone() - one.clone())));
+        let i = shifted.switch_on_an_expression().expect("|v − 1| found");
+        // |g| or its derivative sgn g, on the node g = v − 1
+        match shifted.ops()[i] {
+            Op::Abs(a) | Op::Sign(a) => assert!(!matches!(shifted.ops()[a], Op::Var(_))),
+            ref op => panic!("{op:?}"),
+        }
+        let signed = toy_tape(|vv, one| Real::sgn(&(vv.clone() + one.clone())));
+        assert!(signed.switch_on_an_expression().is_some());
+        let powered = toy_tape(|vv, one| {
+            Real::apow(
+                &(vv.clone() + one.clone()),
+                &(one.clone() + one.clone() + one.clone()),
+            )
+        });
+        assert!(powered.switch_on_an_expression().is_some());
+        for tape in [
+            kink_tape_of(true),
+            kink_tape_of(false),
+            toy_tape(|vv, one| Real::apow(vv, &(one.clone() + one.clone()))),
+            toy_tape(|vv, one| {
+                Real::apow(&(vv.clone() + one.clone()), &(one.clone() + one.clone()))
+            }),
+        ] {
+            assert_eq!(tape.switch_on_an_expression(), None, "{:?}", tape.ops());
+        }
+    }
+
+    /// The engine refuses a second variational system that switches on an expression, with
+    /// its reason, before any step (the toy has no separation outputs to run further; the
+    /// shipped models' second-order bands, which switch on state components, run in
+    /// `tests/suite/curvature.rs`).
+    #[test]
+    fn a_second_order_run_switching_on_an_expression_is_refused() {
+        use crate::engines::taylor::{SWITCH_ON_AN_EXPRESSION, TaylorOptions, integrate_system};
+        let x0 = |tape: &Tape<Interval, 7>| {
+            let mut x: [Interval; 7] = std::array::from_fn(|_| iv(0.0, 0.0));
+            x[1] = iv(-1.0, -1.0);
+            x[SecondOrder { n: 2 }.u()] = iv(0.99, 1.01);
+            assert_eq!(tape.second_order().map(|l| l.n), Some(2));
+            x
+        };
+        let opts = TaylorOptions {
+            horizon: 0.5,
+            ..TaylorOptions::default()
+        };
+        let shifted = toy_tape(|vv, one| Real::abs(&(vv.clone() - one.clone())));
+        let err = integrate_system(&shifted, x0(&shifted), 2, &opts).expect_err("refused");
+        assert_eq!(err.reason, SWITCH_ON_AN_EXPRESSION);
     }
 
     fn check_jump_across(tape: &Tape<Interval, 7>) {

@@ -13,7 +13,8 @@ use super::event::{self, SeparationEvent};
 use super::flow::{self, Flow, Piece};
 use super::options::WIDE_SET;
 use super::options::{
-    CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, TaylorOptions, UNDECIDABLE,
+    CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, SWITCH_ON_AN_EXPRESSION,
+    TaylorOptions, UNDECIDABLE,
 };
 use super::singular;
 use super::step::{self, StepOut};
@@ -152,6 +153,15 @@ impl<'a, I: Enclosure, const N: usize> Run<'a, I, N> {
         {
             return Err(RigorError {
                 reason: format!("bad options: {opts:?}"),
+                t: 0.0,
+                width: 0.0,
+            });
+        }
+        // S₂'s jumps are carried where a state component crosses 0 (`integrable::kink_jump`);
+        // where an expression g does (|g|, sgn g, a power of g), nothing would carry them
+        if tape.second_order().is_some() && tape.switch_on_an_expression().is_some() {
+            return Err(RigorError {
+                reason: SWITCH_ON_AN_EXPRESSION.to_string(),
                 t: 0.0,
                 width: 0.0,
             });

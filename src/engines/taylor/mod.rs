@@ -43,7 +43,8 @@ pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
 pub use integrate::Ended;
 pub use options::{
-    CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, TaylorOptions, UNDECIDABLE,
+    CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, SWITCH_ON_AN_EXPRESSION,
+    TaylorOptions, UNDECIDABLE,
 };
 
 use crate::arith::Enclosure;

@@ -104,6 +104,12 @@ pub struct RigorError {
 pub const GREW_TOO_WIDE: &str = "the enclosure grew too wide";
 pub const CANNOT_CROSS: &str = "cannot cross a switching surface with a proved low-order step";
 pub const UNDECIDABLE: &str = "grazing or undecidable separation";
+/// The reason a second variational system is refused when its field switches on an expression
+/// of the state rather than on a state component
+/// ([`Tape::switch_on_an_expression`](super::tape::Tape::switch_on_an_expression)).
+pub const SWITCH_ON_AN_EXPRESSION: &str = "the field switches on an expression of the state \
+     (|g|, sgn g or a power of g, g not a state component): the second derivatives are not \
+     carried across its zeros";
 /// The reason of a run stopped at [`TaylorOptions::deadline`].
 pub const DEADLINE: &str = "the time budget ran out";
 /// The start of the reason of a run that reached its horizon with the separation condition

@@ -80,6 +80,34 @@ impl<R: Real, const N: usize> Tape<R, N> {
         })
     }
 
+    /// A node that switches on an expression varying in time rather than on a state component:
+    /// |g|, sgn g, a non-entire power or ln|g| of a g that is neither a state component nor
+    /// constant in time. The first-order steps stay sound there (a Taylor step never expands
+    /// across a switch: its jet over a box where g may reach 0 fails, and the low-order steps
+    /// only evaluate f), but the jumps of S₂ where g crosses 0 — which
+    /// [`crate::engines::taylor::integrable::kink_jump`] and [`Tape::sign_jumps`] carry for
+    /// state components only — would be missed: a second variational system must refuse it.
+    /// `None` for the shipped models (every switch is on X, Z, V, Y or W).
+    pub fn switch_on_an_expression(&self) -> Option<usize> {
+        self.ops.iter().enumerate().find_map(|(i, op)| {
+            let a = match *op {
+                Op::Abs(a) | Op::Sign(a) | Op::SpowV(a, _) | Op::ApowV(a, _) | Op::LnAbs(a) => a,
+                Op::Spow(a, q) | Op::Twin(a, q, _, true)
+                    if !super::analytic_power(&self.consts[q], true) =>
+                {
+                    a
+                }
+                Op::Apow(a, q) | Op::Twin(a, q, _, false)
+                    if !super::analytic_power(&self.consts[q], false) =>
+                {
+                    a
+                }
+                _ => return None,
+            };
+            (!self.tconst[a] && !matches!(self.ops[a], Op::Var(_))).then_some(i)
+        })
+    }
+
     /// The state components w, not kinks, of which the tape takes sgn(w) in D_x f: the
     /// derivative of |w| (eq:BWHCL's |Z|^n with n = 1) in a second variational system (with
     /// its layout, the sgn nodes that reach the rates of S; a sgn in D²f only, e.g. of
