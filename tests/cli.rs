@@ -1032,6 +1032,219 @@ fn reports_go_to_out_files() {
     }
 }
 
+/// Every output file (--out, --plot, --band) is checked before any computation, and the
+/// message names the option the user gave: a missing directory, a name ending in '/' (a
+/// directory's), a regular file taken for a directory. Each command here would otherwise
+/// compute for minutes before it writes (a band at 1e-8, an identification of six
+/// parameters, a profile, a comparison of all models).
+#[test]
+fn output_files_are_checked_before_the_work() {
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper_repro/data/synthetic_dss.csv"
+    );
+    let file = scratch("out-check-file.txt");
+    std::fs::write(&file, "kept").unwrap();
+    let under_file = format!("{}/x.csv", file.to_str().unwrap());
+    let band: &[&str] = &[
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        DSS,
+        "--v0",
+        "0.1..5",
+        "--rigorous",
+        "--thickness",
+        "1e-8",
+        "--band",
+    ];
+    let six =
+        "B_b=0.8..1.6,Gamma_b=-1.6..1,kappa=0.5..0.7,sigma_b=0.004..0.06,n=1.1..1.4,p=1.1..1.4";
+    let identify: &[&str] = &[
+        "identify", "--model", "shc", "--data", data, "--error", "0.02", "--bounds", six,
+    ];
+    let profile: &[&str] = &["profile", "--model", "shc", "--data", data];
+    let compare: &[&str] = &["compare", "--data", data];
+    let cases: [(&[&str], &str, &str, &str); 7] = [
+        (band, "", "/nonexistent-dir/b.csv", "does not exist"),
+        (band, "", "/tmp/bwcl-new-dir/", "is not a file name"),
+        (band, "", &under_file, "is not a directory"),
+        (
+            identify,
+            "--out",
+            "/nonexistent-dir/r.txt",
+            "does not exist",
+        ),
+        (
+            identify,
+            "--plot",
+            "/nonexistent-dir/p.svg",
+            "does not exist",
+        ),
+        (profile, "--plot", "/tmp/", "is not a file name"),
+        (compare, "--out", "/nonexistent-dir/c.txt", "does not exist"),
+    ];
+    for (args, opt, path, why) in cases {
+        let mut with: Vec<&str> = args.to_vec();
+        if !opt.is_empty() {
+            with.push(opt);
+        }
+        with.push(path);
+        let t = std::time::Instant::now();
+        let msg = assert_bad_input(&with);
+        let named = if opt.is_empty() { "--band" } else { opt };
+        assert!(
+            msg.contains(&format!("{named} '")) && msg.contains(why),
+            "{with:?}: {msg}"
+        );
+        // refused before the work, not after minutes of it
+        assert!(t.elapsed().as_secs() < 20, "{with:?}: {:?}", t.elapsed());
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+    assert!(!std::path::Path::new("/tmp/bwcl-new-dir").exists());
+}
+
+/// A bad value is named as the user wrote it, and the reason is true of it: digits are not
+/// read back as a double, invisible direction overrides are escaped, negative values reach
+/// their option's check, a decimal below the smallest double is said to be, a reversed range
+/// is called reversed, an empty item is called empty (found by an adversarial probe).
+#[test]
+fn bad_values_are_named_as_written() {
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper_repro/data/synthetic_dss.csv"
+    );
+    let cor = |v0: &str| assert_bad_input(&["cor", "--model", "shc", "--base", DSS, "--v0", v0]);
+    let cases: Vec<(String, &str)> = vec![
+        (
+            cor("1.00000000000000000001x"),
+            "'1.00000000000000000001x' is not a number",
+        ),
+        (
+            assert_bad_input(&[
+                "cor",
+                "--model",
+                "shc",
+                "--base",
+                "1.43,-1.42,0.632,0.00715,1.31,123456789012345678901x",
+                "--v0",
+                "1",
+            ]),
+            "'123456789012345678901x'",
+        ),
+        (cor("\u{202e}1"), r"'\u{202e}1'"),
+        (
+            cor("1e-999"),
+            "'1e-999' is below the smallest positive double",
+        ),
+        (
+            assert_bad_input(&[
+                "cor",
+                "--model",
+                "shc",
+                "--base",
+                DSS,
+                "--v0",
+                "1e-999",
+                "--rigorous",
+            ]),
+            "below the smallest positive double",
+        ),
+        (cor("1,2,"), "'1,2,': an item or an end of a range is empty"),
+        (
+            assert_bad_input(&["fit", "--model", "shc", "--data", data, "--error", "1e-999"]),
+            "'1e-999' for '--error <E>': must be a finite number > 0 (this one is below",
+        ),
+        (
+            assert_bad_input(&["laws", "--tol", "-1"]),
+            "--tol '-1' must be",
+        ),
+        (
+            assert_bad_input(&["laws", "--e-star", "-0.5..0.5"]),
+            "--e-star '-0.5..0.5'",
+        ),
+        (
+            assert_bad_input(&["laws", "--formulas", "all,flores"]),
+            "all stands alone",
+        ),
+        (
+            assert_bad_input(&[
+                "prove", "monotone", "--model", "shc", "--base", DSS, "--v0", "-1..1",
+            ]),
+            "--v0 '-1..1'",
+        ),
+        (
+            assert_bad_input(&[
+                "prove", "monotone", "--model", "shc", "--base", DSS, "--v0", "5..0.1",
+            ]),
+            "'5..0.1' is empty (its start exceeds its end)",
+        ),
+        (
+            assert_bad_input(&["prove"]),
+            "a subcommand is needed: monotone",
+        ),
+        (
+            assert_bad_input(&["fit", "--model", "shc", "--data", data, "--fix", "kappa="]),
+            "'kappa=' lacks a number",
+        ),
+    ];
+    let lm = [
+        "cor",
+        "--model",
+        "linear-maxwell",
+        "--nd",
+        "c=1e-999",
+        "--rigorous",
+    ];
+    let cases = cases.into_iter().chain([
+        // refused as input (it was a run "not proved", exit 1)
+        (
+            assert_bad_input(&lm),
+            "c = 1e-999 is below the smallest positive double",
+        ),
+        (
+            assert_bad_input(&["classical", "--law", "linear-maxwell", "--c", "1e-999"]),
+            "--c '1e-999' is below the smallest positive double",
+        ),
+        // a double in a message has an exponent, not its 324 digits
+        (
+            assert_bad_input(&[
+                "classical",
+                "--law",
+                "linear-maxwell",
+                "--c",
+                "1e-999",
+                "--rigorous",
+            ]),
+            "5e-324]",
+        ),
+    ]);
+    for (msg, expected) in cases {
+        assert!(msg.contains(expected), "{msg} lacks {expected}");
+    }
+    // the speeds a cost could not evaluate are named with their reason where the note on
+    // stderr says it is: in the table too, not only in JSON
+    let csv = scratch("tiny-v0.csv");
+    std::fs::write(&csv, "v0,e\n1e-300,0.5\n1,0.8\n").unwrap();
+    let o = bwcl(&[
+        "cost",
+        "--model",
+        "shc",
+        "--base",
+        DSS,
+        "--data",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("the reason is in the output"));
+    let out = stdout(&o);
+    assert!(
+        out.contains("failed (each counts with residual 1 in J):\n  v0 = 1e-300: B = 0 at v0"),
+        "{out}"
+    );
+}
+
 /// --derived: Hooke's law in SI (m = 2 kg, k = 8 N/m, v0 = 3 m/s) has ω = 2/s, δ_max =
 /// v0/ω = 1.5 m, F_max = k δ_max = 12 N and loses no energy; every format carries the columns,
 /// the proved ones hold the closed forms, a range says why it has none, and --derived with

@@ -307,7 +307,7 @@ fn bad_input_gets_one_line_and_exit_2() {
     let cmd = |extra: &[&'static str]| with(d, base, extra);
     one_line_exit_2(
         &cmd(&["--error", "0", "--bounds", "kappa=0.5..0.7"]),
-        "--error 0",
+        "'0' for '--error <E>': must be a finite number > 0",
     );
     one_line_exit_2(
         &cmd(&["--error", "-0.1", "--bounds", "kappa=0.5..0.7"]),

@@ -36,6 +36,23 @@ fn decimal(s: &str) -> Result<f64, String> {
         .ok_or_else(|| "not a decimal number".to_string())
 }
 
+/// --error: a finite number > 0 as a double (a decimal that underflows to 0 is said to).
+fn error_bound(s: &str) -> Result<f64, String> {
+    let e = decimal(s)?;
+    if e.is_finite() && e > 0.0 {
+        Ok(e)
+    } else if e == 0.0
+        && s.trim()
+            .split(['e', 'E'])
+            .next()
+            .is_some_and(|m| m.chars().any(|c| matches!(c, '1'..='9')))
+    {
+        Err("must be a finite number > 0 (this one is below the smallest positive double)".into())
+    } else {
+        Err("must be a finite number > 0".into())
+    }
+}
+
 /// --horizon and --t-end: (0, T_MAX].
 fn time(s: &str) -> Result<f64, String> {
     let t = decimal(s)?;
@@ -473,13 +490,18 @@ pub struct LawsArgs {
     #[arg(long, default_value = "all", value_name = "NAMES")]
     pub formulas: String,
     /// The range of target CoRs a..b, 0 < a < b < 1.
-    #[arg(long = "e-star", default_value = "0.05..0.99", value_name = "A..B")]
+    #[arg(
+        long = "e-star",
+        default_value = "0.05..0.99",
+        value_name = "A..B",
+        allow_hyphen_values = true
+    )]
     pub e_star: String,
     /// Targets on the grid (2 to 10000): the ends and points rounded to 4 decimals between.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
     pub points: usize,
     /// The error bound whose validity is proved over the range, in (0, 1).
-    #[arg(long, default_value = "1e-3")]
+    #[arg(long, default_value = "1e-3", allow_hyphen_values = true)]
     pub tol: String,
     /// Output format: the summary per formula (table), or every grid point (csv, json; json
     /// also has the proved runs).
@@ -516,7 +538,7 @@ pub struct IdentifyArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub data: PathBuf,
     /// Every e is known to within ±E (E > 0); a column sigma overrides it per row.
-    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = decimal)]
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = error_bound)]
     pub error: Option<f64>,
     /// Every tc is known to within ±T (T > 0); a column tc_sigma overrides it per row.
     #[arg(long, value_name = "T", allow_hyphen_values = true, value_parser = decimal)]
@@ -658,7 +680,7 @@ pub struct SearchArgs {
     pub bounds: Option<String>,
     /// The error of every CoR without a `sigma` column value (> 0): residuals (e_i −
     /// e_model)/E, and χ² absolute. Without it and without the column, errors 1 (the paper's J).
-    #[arg(long, value_name = "E", allow_hyphen_values = true)]
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = error_bound)]
     pub error: Option<f64>,
     /// The error of every contact duration without a `tc_sigma` value (> 0; needed with a tc
     /// column that has no tc_sigma).
@@ -944,7 +966,7 @@ pub struct MonotoneArgs {
     #[arg(long, value_name = "B,Γ,κ,σ_b,n,p", allow_hyphen_values = true)]
     pub base: String,
     /// The range of impact speeds a..b [m/s], 0 < a < b.
-    #[arg(long, value_name = "a..b")]
+    #[arg(long, value_name = "a..b", allow_hyphen_values = true)]
     pub v0: String,
     /// Output format (table or json).
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
@@ -1015,7 +1037,7 @@ pub struct CompareArgs {
     /// Every e known to within ±E (E > 0; for every row: a sigma column weights the fits only):
     /// each classical law's feasible set is proved (empty: a certificate that no law of the
     /// family fits the data to ±E).
-    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = decimal)]
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = error_bound)]
     pub error: Option<f64>,
     /// Random starts of the Bouc–Wen fits, 0 ≤ N ≤ 256 (as `fit`).
     #[arg(long, value_name = "N", default_value_t = 8, allow_hyphen_values = true,

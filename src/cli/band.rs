@@ -146,10 +146,10 @@ fn band_case(
 
 /// `cor --rigorous --band FILE`: the proved band, written to FILE; the summary on stdout.
 pub fn band(a: &CorArgs, path: &Path) -> Result<i32, CliError> {
-    input::out_path(Some(path))?;
+    input::out_path_as("--band", Some(path))?;
     let json = path.extension().is_some_and(|e| e == "json");
     let (bytes, summary) = band_report(a, json, None)?;
-    output::emit(Some(path), &bytes)?;
+    output::emit_as("--band", Some(path), &bytes)?;
     output::emit(None, summary.as_bytes())?;
     Ok(super::EXIT_OK)
 }
@@ -285,13 +285,19 @@ pub fn monotone_report(
             .then(|| <Interval as bwcl::arith::Real>::parse_decimal(&a.v0));
     let (lo, hi) = match range {
         Some(Ok(r)) => (r.inf(), r.sup()),
-        _ => (f64::NAN, f64::NAN),
-    };
-    if lo.is_nan() {
-        return Err(CliError::Input(format!(
-            "--v0 '{}': expected a range a..b of two numbers",
-            bwcl::fit::data::echo(&a.v0)
-        )));
+        // why the range is none (reversed, not a number, not finite), from its parser
+        Some(Err(why)) => {
+            return Err(CliError::Input(format!(
+                "--v0: {}",
+                super::input::compact(&why)
+            )));
+        }
+        None => {
+            return Err(CliError::Input(format!(
+                "--v0 '{}': expected a range a..b of two numbers",
+                bwcl::fit::data::echo(&a.v0)
+            )));
+        }
     };
     if !(lo > 0.0 && lo < hi && hi.is_finite()) {
         return Err(CliError::Input(format!(

@@ -33,8 +33,18 @@ fn name(l: LawArg) -> &'static str {
 /// A parameter as written, parsed in the arithmetic `R` (a decimal enclosed exactly by the
 /// interval types), or refused naming the option.
 fn value<R: Real>(opt: &str, text: &str) -> Result<R, CliError> {
-    R::parse_decimal(text)
-        .map_err(|_| CliError::Input(format!("--{opt} '{}' is not a number", echo(text))))
+    R::parse_decimal(text).map_err(|e| {
+        // the parser's reason (not a number, not finite, below the smallest double), with the
+        // value as written
+        let why = if e.contains("below the smallest positive double") {
+            "is below the smallest positive double (it would be read as 0)"
+        } else if e.contains("finite") {
+            "is not a finite number"
+        } else {
+            "is not a number"
+        };
+        CliError::Input(format!("--{opt} '{}' {why}", echo(text)))
+    })
 }
 
 /// Which parameters the law takes; any other given is refused.

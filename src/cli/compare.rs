@@ -507,6 +507,7 @@ fn feasible(
 
 /// `bwcl compare`.
 pub fn compare(a: &CompareArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
     let (bytes, failures) = report(a, true)?;
     output::emit(a.out.as_deref(), &bytes)?;
     if failures > 0 {

@@ -414,7 +414,15 @@ fn curve_table(c: &FitCurve) -> String {
             ]
         })
         .collect();
-    table(&["v0", "e_data", "e_model", "residual"], &rows)
+    let mut out = table(&["v0", "e_data", "e_model", "residual"], &rows);
+    // why a speed failed: the note on stderr points here
+    if !c.errors.is_empty() {
+        out.push_str("\nfailed (each counts with residual 1 in J):\n");
+        for line in errors_text(c) {
+            out.push_str(&format!("  {line}\n"));
+        }
+    }
+    out
 }
 
 /// A progress bar on stderr, hidden when stderr is not a terminal.

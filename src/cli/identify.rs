@@ -284,6 +284,8 @@ pub fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
 }
 
 pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
+    super::input::out_path(a.out.as_deref())?;
+    super::input::out_path_as("--plot", a.plot.as_deref())?;
     let done = compute(a, true, None)?;
     let d = &done;
     let start = &d.start;
@@ -421,7 +423,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
         }
     };
     if let Some(p) = &a.plot {
-        output::emit(Some(p), svg(paving, start, &free).as_bytes())?;
+        output::emit_as("--plot", Some(p), svg(paving, start, &free).as_bytes())?;
     }
     output::emit(a.out.as_deref(), &bytes)?;
     match &paving.stopped {

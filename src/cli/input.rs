@@ -272,6 +272,13 @@ fn keyed_error<R: Real>(opt: &str, text: &str, e: ParamError) -> CliError {
 /// and a range without --rigorous gets a hint.
 fn input_error<R: Real>(opt: &str, text: &str, pairs: &[(&str, &str)], e: ParamError) -> CliError {
     let mut msg = e.0;
+    // an empty item ('1,2,', '0.1..') is named in the text the user wrote, not as ''
+    if msg.contains("'' is not") {
+        return CliError::Input(format!(
+            "{opt} '{}': an item or an end of a range is empty",
+            echo(text)
+        ));
+    }
     for (name, token) in pairs {
         let Ok(x) = R::parse_decimal(token) else {
             continue;
@@ -316,7 +323,9 @@ pub fn short(x: f64) -> String {
 }
 
 /// `msg` with every decimal longer than 20 characters (a double printed in full, e.g. 10³⁰⁰
-/// with its 301 digits) rewritten by [`short`]: the same double, read back.
+/// with its 301 digits) rewritten by [`short`]: the same double, read back. A value quoted as
+/// the user wrote it ('…', the quote after a space, '(', '=' or at the start) is kept as
+/// written: `1.00000000000000000001x` is not a number, but its digits would read back as 1.
 pub fn compact(msg: &str) -> String {
     let mut out = String::new();
     let mut run = String::new();
@@ -327,13 +336,23 @@ pub fn compact(msg: &str) -> String {
         }
         run.clear();
     };
+    let mut quoted = false;
+    let mut prev = ' ';
     for c in msg.chars() {
-        if c.is_ascii_digit() || c == '.' || (c == '-' && run.is_empty()) {
+        if quoted {
+            quoted = c != '\'';
+            out.push(c);
+        } else if c == '\'' && matches!(prev, ' ' | '(' | '=' | ':' | ',') {
+            flush(&mut run, &mut out);
+            quoted = true;
+            out.push(c);
+        } else if c.is_ascii_digit() || c == '.' || (c == '-' && run.is_empty()) {
             run.push(c);
         } else {
             flush(&mut run, &mut out);
             out.push(c);
         }
+        prev = c;
     }
     flush(&mut run, &mut out);
     out
@@ -443,13 +462,14 @@ pub fn fallback(bits: Option<u32>, seconds: Option<f64>) -> FallbackBudget {
 }
 
 /// Where `path` leads: the file at the end of its chain of symbolic links (the link itself is
-/// kept and its target replaced), the chain capped at 40 links.
-pub fn resolve_links(path: &Path) -> Result<PathBuf, CliError> {
+/// kept and its target replaced), the chain capped at 40 links; `option` names the path in a
+/// message (`--out`, `--plot`, `--band`).
+pub fn resolve_links(option: &str, path: &Path) -> Result<PathBuf, CliError> {
     let mut p = path.to_path_buf();
     for _ in 0..40 {
         match std::fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
-                let link = std::fs::read_link(&p).map_err(|e| out_error(path, e))?;
+                let link = std::fs::read_link(&p).map_err(|e| out_error(option, path, e))?;
                 p = match p.parent() {
                     Some(dir) if link.is_relative() => dir.join(link),
                     _ => link,
@@ -459,35 +479,43 @@ pub fn resolve_links(path: &Path) -> Result<PathBuf, CliError> {
         }
     }
     Err(CliError::Input(format!(
-        "--out '{}': too many levels of symbolic links",
+        "{option} '{}': too many levels of symbolic links",
         echo(&path.to_string_lossy())
     )))
 }
 
-fn out_error(path: &Path, e: std::io::Error) -> CliError {
-    CliError::Input(format!("--out '{}': {e}", echo(&path.to_string_lossy())))
+fn out_error(option: &str, path: &Path, e: std::io::Error) -> CliError {
+    CliError::Input(format!("{option} '{}': {e}", echo(&path.to_string_lossy())))
 }
 
-/// --out: a regular file or a new name, in a directory that exists (checked before any
-/// computation; through symbolic links).
+/// --out: see [`out_path_as`].
 pub fn out_path(out: Option<&Path>) -> Result<(), CliError> {
+    out_path_as("--out", out)
+}
+
+/// An output file given by `option` (--out, --plot, --band): a regular file or a new name, in
+/// a directory that exists and takes a new file (checked before any computation; through
+/// symbolic links), so that a run never computes for minutes and then fails to write.
+pub fn out_path_as(option: &str, out: Option<&Path>) -> Result<(), CliError> {
     let Some(path) = out else { return Ok(()) };
     let shown = echo(&path.to_string_lossy());
-    if path.as_os_str().is_empty() || path.is_dir() {
+    // `new/` names a directory even where none exists (its parent would be taken for it)
+    let text = path.as_os_str().as_encoded_bytes();
+    if text.is_empty() || path.is_dir() || text.ends_with(b"/") {
         return Err(CliError::Input(format!(
-            "--out '{shown}' is not a file name"
+            "{option} '{shown}' is not a file name"
         )));
     }
-    let target = resolve_links(path)?;
+    let target = resolve_links(option, path)?;
     // NAME_MAX of Linux and most file systems: found now, not after the computation
     if target.file_name().is_some_and(|n| n.len() > 255) {
         return Err(CliError::Input(format!(
-            "--out '{shown}': the file name is longer than 255 bytes"
+            "{option} '{shown}': the file name is longer than 255 bytes"
         )));
     }
     if target.exists() && !target.is_file() {
         return Err(CliError::Input(format!(
-            "--out '{shown}' is not a regular file (it would not be replaced)"
+            "{option} '{shown}' is not a regular file (it would not be replaced)"
         )));
     }
     let dir = match target.parent() {
@@ -495,10 +523,32 @@ pub fn out_path(out: Option<&Path>) -> Result<(), CliError> {
         _ => Path::new("."),
     };
     if !dir.is_dir() {
+        let what = if dir.exists() {
+            "is not a directory"
+        } else {
+            "does not exist"
+        };
         return Err(CliError::Input(format!(
-            "--out '{shown}': the directory '{}' does not exist",
+            "{option} '{shown}': the directory '{}' {what}",
             echo(&dir.to_string_lossy())
         )));
     }
-    Ok(())
+    // the file is written as a new file in that directory and renamed into place
+    // (`output::emit`): try that now, with the same temporary name
+    let probe = target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()));
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+    {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => Err(CliError::Input(format!(
+            "{option} '{shown}': cannot write in the directory '{}': {e}",
+            echo(&dir.to_string_lossy())
+        ))),
+    }
 }

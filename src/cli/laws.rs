@@ -49,6 +49,12 @@ fn formulas(list: &str) -> Result<Vec<DampingFormula>, CliError> {
     }
     let mut out = Vec::new();
     for k in list.split(',') {
+        if k.trim() == "all" {
+            return Err(CliError::Input(format!(
+                "--formulas '{}': all stands alone, not in a list",
+                echo(list)
+            )));
+        }
         let f = DampingFormula::from_key(k.trim()).ok_or_else(|| {
             CliError::Input(format!(
                 "--formulas: '{}' is not a formula (one of all, {})",

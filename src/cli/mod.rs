@@ -101,10 +101,14 @@ pub fn note(line: &str) {
 fn clap_error(e: clap::Error) -> i32 {
     match e.kind() {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            report(
-                "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, identify, \
-                 laws, classical or prove (see --help)",
-            );
+            // `bwcl prove` lacks its own subcommand, `bwcl` one of the commands
+            let prove = std::env::args_os().nth(1).is_some_and(|a| a == "prove");
+            report(if prove {
+                "prove: a subcommand is needed: monotone (see prove --help)"
+            } else {
+                "a subcommand is needed: cor, trajectory, loop, fit, cost, profile, prove, \
+                 identify, laws, classical or compare (see --help)"
+            });
             EXIT_BAD_INPUT
         }
         ErrorKind::InvalidUtf8 => {

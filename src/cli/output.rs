@@ -759,6 +759,11 @@ pub fn table(head: &[&str], rows: &[Vec<String>]) -> String {
 /// symbolic link is kept: the file it leads to is replaced. The temporary name is short, so
 /// that any name the file system takes for `path` works.
 pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
+    emit_as("--out", out, bytes)
+}
+
+/// [`emit`] of the file given by `option` (--out, --plot, --band), which its messages name.
+pub fn emit_as(option: &str, out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
     let Some(path) = out else {
         let mut so = std::io::stdout().lock();
         return match so.write_all(bytes).and_then(|_| so.flush()) {
@@ -768,12 +773,12 @@ pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
             Err(e) => Err(CliError::Failed(format!("writing to stdout: {e}"))),
         };
     };
-    let target = super::input::resolve_links(path)?;
+    let target = super::input::resolve_links(option, path)?;
     let tmp = target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()));
     let io = |what: &str, e: std::io::Error| {
         let _ = std::fs::remove_file(&tmp);
         let shown = bwcl::fit::data::echo(&path.to_string_lossy());
-        CliError::Input(format!("--out '{shown}': {what}: {e}"))
+        CliError::Input(format!("{option} '{shown}': {what}: {e}"))
     };
     std::fs::write(&tmp, bytes).map_err(|e| io("cannot write", e))?;
     // a replaced file keeps its permissions

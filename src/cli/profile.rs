@@ -58,6 +58,7 @@ fn end_text(e: &End) -> String {
 
 pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
     super::input::out_path(a.out.as_deref())?;
+    super::input::out_path_as("--plot", a.plot.as_deref())?;
     let data = read_data(&a.data)?;
     let bar = profile_bar();
     let out = compute(a, &data, &bar)?;
@@ -127,7 +128,7 @@ pub fn profile(a: &ProfileArgs) -> Result<i32, CliError> {
         }
     };
     if let Some(p) = &a.plot {
-        output::emit(Some(p), svg(profiles, out.threshold).as_bytes())?;
+        output::emit_as("--plot", Some(p), svg(profiles, out.threshold).as_bytes())?;
     }
     output::emit(a.out.as_deref(), &bytes)?;
     Ok(EXIT_OK)

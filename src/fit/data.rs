@@ -38,7 +38,17 @@ pub fn echo(text: &str) -> String {
             '\t' => "\\t".to_string(),
             '\0' => "\\0".to_string(),
             c if (c as u32) < 0x80 && c.is_control() => format!("\\x{:02x}", c as u32),
-            c if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}' | '\u{feff}') => {
+            // controls, line breaks, and the invisible format characters that reorder or hide
+            // text on a terminal (bidirectional overrides and isolates, zero-width ones)
+            c if c.is_control()
+                || matches!(
+                    c,
+                    '\u{2028}' | '\u{2029}' | '\u{feff}' | '\u{061c}' | '\u{00ad}'
+                )
+                || ('\u{200b}'..='\u{200f}').contains(&c)
+                || ('\u{202a}'..='\u{202e}').contains(&c)
+                || ('\u{2060}'..='\u{206f}').contains(&c) =>
+            {
                 format!("\\u{{{:x}}}", c as u32)
             }
             c => c.to_string(),
@@ -355,6 +365,14 @@ mod tests {
         assert!(cut.ends_with('…'));
         // exactly the limit: no ellipsis
         assert_eq!(echo(&"9".repeat(ECHO_CHARS)), "9".repeat(ECHO_CHARS));
+        // a right-to-left override would reverse the rest of the line on a terminal; the other
+        // invisible format characters hide what was written
+        assert_eq!(echo("\u{202e}1"), r"\u{202e}1");
+        assert_eq!(
+            echo("1\u{200b}2\u{2066}3\u{ad}"),
+            r"1\u{200b}2\u{2066}3\u{ad}"
+        );
+        assert_eq!(echo("é½٣"), "é½٣");
     }
 
     #[test]

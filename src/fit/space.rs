@@ -35,6 +35,15 @@ fn unknown(name: &str) -> String {
     )
 }
 
+/// Why `value` (a part of `item`) is no number: it is missing, or not a finite number.
+fn not_a_number(item: &str, value: &str) -> String {
+    if value.trim().is_empty() {
+        format!("'{}' lacks a number", echo(item.trim()))
+    } else {
+        format!("'{}' is not a finite number", echo(value.trim()))
+    }
+}
+
 /// A list `name=value,…` (`--fix`): each name once.
 pub fn parse_fix(text: &str) -> Result<Vec<(usize, f64)>, String> {
     let mut out: Vec<(usize, f64)> = Vec::new();
@@ -48,7 +57,7 @@ pub fn parse_fix(text: &str) -> Result<Vec<(usize, f64)>, String> {
             .parse()
             .ok()
             .filter(|v: &f64| v.is_finite())
-            .ok_or_else(|| format!("'{}' is not a finite number", echo(value.trim())))?;
+            .ok_or_else(|| not_a_number(item, value))?;
         if out.iter().any(|(j, _)| *j == i) {
             return Err(format!("{} is given twice", NAMES[i]));
         }
@@ -76,7 +85,7 @@ pub fn parse_bounds(text: &str) -> Result<Vec<(usize, f64, f64)>, String> {
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| format!("'{}' is not a finite number", echo(t.trim())))
+                .ok_or_else(|| not_a_number(item, t))
         };
         let (lo, hi) = (num(a)?, num(b)?);
         if lo >= hi {

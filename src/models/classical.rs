@@ -158,7 +158,16 @@ impl<R: Real> LawParams<R> {
             }
             let exact = decimal_range(val).map_err(|e| ParamError(format!("{key}: {e}")))?;
             check_value(law, key, &exact, val.trim())?;
-            vals[i] = Some(R::parse_decimal(val).map_err(|e| ParamError(format!("{key}: {e}")))?);
+            let parsed = R::parse_decimal(val).map_err(|e| ParamError(format!("{key}: {e}")))?;
+            // > 0 as written but not as enclosed: a decimal below the smallest positive double
+            let positive = matches!(key, "m" | "k") || (key == "c" && law == Law::LinearMaxwell);
+            if positive && parsed.lo() <= 0.0 {
+                return Err(ParamError(format!(
+                    "{key} = {} is below the smallest positive double (its enclosure reaches 0)",
+                    val.trim()
+                )));
+            }
+            vals[i] = Some(parsed);
         }
         let get = |name: &str| -> Result<Option<R>, ParamError> {
             match keys.iter().position(|k| *k == name) {
@@ -334,11 +343,12 @@ mod tests {
     #[test]
     fn values_are_checked_as_written() {
         let bad = |law, src, text: &str| LawParams::<f64>::parse(law, src, text).unwrap_err().0;
-        // 1e-400 > 0 as written, but its double is 0: σ = χv0/k is refused as not finite
-        let tiny =
-            LawParams::<f64>::parse(Law::HuntCrossley, LawSource::Physical, "m=1,k=1e-400,chi=1")
-                .unwrap();
-        assert!(tiny.at(&1.0).unwrap_err().0.contains("not a finite number"));
+        // 1e-400 > 0 as written, but its double is 0: refused as read, with that reason (it
+        // was refused later, σ = χv0/k not finite)
+        assert!(
+            bad(Law::HuntCrossley, LawSource::Physical, "m=1,k=1e-400,chi=1")
+                .contains("'1e-400' is below the smallest positive double")
+        );
         assert_eq!(
             bad(Law::HuntCrossley, LawSource::Physical, "m=1,k=0,chi=1"),
             "k = 0 must be > 0"

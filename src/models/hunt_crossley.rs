@@ -62,16 +62,14 @@ impl<R: Real> HuntCrossley<R> {
     pub fn new(sigma: R, n: R) -> Result<Self, String> {
         if !(sigma.lo() >= 0.0 && sigma.hi().is_finite()) {
             return Err(format!(
-                "the damping σ must be ≥ 0 and finite (got [{}, {}])",
-                sigma.lo(),
-                sigma.hi()
+                "the damping σ must be ≥ 0 and finite (got {})",
+                crate::models::params::show(&sigma)
             ));
         }
         if !(n.lo() >= 1.0 && n.hi().is_finite()) {
             return Err(format!(
-                "the exponent n must be ≥ 1 and finite (got [{}, {}])",
-                n.lo(),
-                n.hi()
+                "the exponent n must be ≥ 1 and finite (got {})",
+                crate::models::params::show(&n)
             ));
         }
         let damped = !(sigma.lo() == 0.0 && sigma.hi() == 0.0);

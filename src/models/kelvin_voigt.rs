@@ -37,9 +37,8 @@ impl<R: Real> KelvinVoigt<R> {
     pub fn new(zeta: R) -> Result<Self, String> {
         if !(zeta.lo() >= 0.0 && zeta.hi().is_finite()) {
             return Err(format!(
-                "the damping ratio ζ must be ≥ 0 and finite (got [{}, {}])",
-                zeta.lo(),
-                zeta.hi()
+                "the damping ratio ζ must be ≥ 0 and finite (got {})",
+                crate::models::params::show(&zeta)
             ));
         }
         let two_zeta = zeta.mul_int(2);

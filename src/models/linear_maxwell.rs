@@ -39,9 +39,8 @@ impl<R: Real> LinearMaxwell<R> {
     pub fn new(c: R) -> Result<Self, String> {
         if !(c.lo() > 0.0 && c.hi().is_finite()) {
             return Err(format!(
-                "the dashpot c̃ must be > 0 and finite (got [{}, {}])",
-                c.lo(),
-                c.hi()
+                "the dashpot c̃ must be > 0 and finite (got {})",
+                super::params::show(&c)
             ));
         }
         let inv_c = R::one() / c.clone();

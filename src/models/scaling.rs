@@ -76,7 +76,13 @@ pub fn check_speed<R: Real>(v0: &R) -> Result<(), ParamError> {
         )));
     }
     if v0.lo() <= 0.0 {
-        return Err(ParamError(format!("v0 = {} must be > 0", show(v0))));
+        // a positive decimal below the smallest positive double: its enclosure reaches 0
+        let why = if v0.hi() > 0.0 && v0.hi() < f64::MIN_POSITIVE {
+            " (this one is below the smallest positive double: its enclosure reaches 0)"
+        } else {
+            ""
+        };
+        return Err(ParamError(format!("v0 = {} must be > 0{why}", show(v0))));
     }
     Ok(())
 }

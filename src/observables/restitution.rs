@@ -108,9 +108,8 @@ fn tighten(f: &impl Fn(&Float) -> i8, end: &mut Float, mut u: Float, s: i8, tigh
 fn check_sigma(sigma: &Big) -> Result<(), String> {
     if sigma.is_empty() || sigma.lo() <= 0.0 || !sigma.hi().is_finite() {
         return Err(format!(
-            "the damping σ must be a finite positive number (got [{}, {}])",
-            sigma.lo(),
-            sigma.hi()
+            "the damping σ must be a finite positive number (got {})",
+            crate::models::params::show(sigma)
         ));
     }
     Ok(())

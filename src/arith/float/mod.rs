@@ -56,6 +56,13 @@ impl Real for f64 {
         if !x.is_finite() {
             return Err(format!("'{t}' is not a finite number"));
         }
+        // a nonzero decimal below the smallest positive double would silently become 0
+        let mantissa = t.split(['e', 'E']).next().unwrap_or(t);
+        if x == 0.0 && mantissa.chars().any(|c| matches!(c, '1'..='9')) {
+            return Err(format!(
+                "'{t}' is below the smallest positive double (it would be read as 0)"
+            ));
+        }
         Ok(x)
     }
     fn unbounded() -> Self {
