@@ -50,6 +50,7 @@ import os
 import sys
 import warnings
 from dataclasses import dataclass, field
+from collections.abc import Mapping
 from typing import Any, Callable, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -148,6 +149,10 @@ def _token(x: Any, what: str, ranges: bool) -> str:
     """One value as the CLI reads it: a string as written, an integer in full, a float as its
     shortest decimal (``repr``), a pair (lo, hi) as the range ``lo..hi``."""
     if isinstance(x, str):
+        # one value: a comma would make it two items of the CLI's list
+        if "," in x:
+            raise ValueError(f"{what}: the value {_frames_repr(x)} holds a comma; give one "
+                             "value per item")
         return x
     if isinstance(x, (bool, np.bool_)):
         raise TypeError(f"{what}: expected a number, got the bool {x!r}")
@@ -187,7 +192,8 @@ def _physical(p: Any, ranges: bool) -> str:
             "physical: expected a mapping {'m': …, 'k': …, …} or the CLI's text "
             f"'m=…,k=…,…', got {type(p).__name__}"
         )
-    return ",".join(f"{k}={_token(v, 'physical', ranges)}" for k, v in p.items())
+    return ",".join(f"{_key(k, 'physical')}={_token(v, 'physical', ranges)}"
+                    for k, v in p.items())
 
 
 def _named(p: Any, what: str, ranges: bool) -> str:
@@ -200,7 +206,7 @@ def _named(p: Any, what: str, ranges: bool) -> str:
             f"{what}: a classical law's parameters go by name, as a mapping "
             f"{{'sigma': …, 'n': …}} or the CLI's text 'sigma=…,n=…'; got {type(p).__name__}"
         )
-    return ",".join(f"{k}={_token(v, what, ranges)}" for k, v in p.items())
+    return ",".join(f"{_key(k, what)}={_token(v, what, ranges)}" for k, v in p.items())
 
 
 def _flag(x: Any, name: str) -> bool:
@@ -208,6 +214,37 @@ def _flag(x: Any, name: str) -> bool:
     if isinstance(x, (bool, np.bool_)):
         return bool(x)
     raise TypeError(f"{name} must be True or False, not {type(x).__name__} {_frames_repr(x)}")
+
+
+def _flags_checked(fn: Callable) -> Callable:
+    """``fn`` with each of its switches (the parameters whose default is True or False) checked
+    by :func:`_flag` when given: ``rigorous="no"`` is a TypeError, not a truthy string."""
+    import functools
+    import inspect
+
+    sig = inspect.signature(fn)
+    names = [n for n, p in sig.parameters.items() if isinstance(p.default, bool)]
+
+    @functools.wraps(fn)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        try:
+            given = sig.bind_partial(*args, **kwargs).arguments
+        except TypeError:
+            given = {}  # the call itself reports the wrong arguments
+        for n in names:
+            if n in given:
+                _flag(given[n], n)
+        return fn(*args, **kwargs)
+
+    return checked
+
+
+def _key(k: Any, what: str) -> str:
+    """A parameter's name in a mapping: a plain name (a key holding ',' or '=' would be read
+    as more than one item)."""
+    if not isinstance(k, str) or not k.replace("_", "a").isalnum() or not k.isascii():
+        raise ValueError(f"{what}: {_frames_repr(k)} is not a parameter name")
+    return k
 
 
 def _frames_repr(x: Any) -> str:
@@ -740,6 +777,7 @@ class FitProgress(NamedTuple):
 # the functions
 
 
+@_flags_checked
 def cor(
     model: str,
     *,
@@ -842,6 +880,7 @@ def _cor_result(d: dict) -> CorResult:
     )
 
 
+@_flags_checked
 def cor_rigorous(
     model: str,
     *,
@@ -1055,6 +1094,7 @@ def _several(v0: Any) -> Optional[list]:
     return items if len(items) > 1 else None
 
 
+@_flags_checked
 def trajectory(
     model: str,
     *,
@@ -1101,6 +1141,7 @@ def trajectory(
     )
 
 
+@_flags_checked
 def loop(
     model: str,
     *,
@@ -1167,6 +1208,7 @@ def _cost_result(cls: Any, d: dict, **extra: Any) -> Any:
     )
 
 
+@_flags_checked
 def cost(
     model: str,
     data: Any = None,
@@ -1214,6 +1256,7 @@ def _text_progress() -> Callable[[FitProgress], None]:
         return line
 
 
+@_flags_checked
 def fit(
     model: str,
     data: Any = None,
@@ -1308,16 +1351,20 @@ def _search(fix: Optional[dict], bounds: Optional[dict], error: Optional[float],
     """The CLI's --fix, --bounds, --error, --tc-error and --no-tc."""
     out = []
     if fix:
-        if not isinstance(fix, dict):
+        if not isinstance(fix, Mapping):
             raise TypeError(f"fix: expected a dict name -> value, got {type(fix).__name__}")
-        out.append("--fix=" + ",".join(f"{k}={_num(v, 'fix')}" for k, v in fix.items()))
+        out.append("--fix=" + ",".join(f"{_key(k, 'fix')}={_num(v, 'fix')}"
+                                       for k, v in fix.items()))
     if bounds:
-        if not isinstance(bounds, dict):
+        if not isinstance(bounds, Mapping):
             raise TypeError(f"bounds: expected a dict name -> (lo, hi), got {type(bounds).__name__}")
         items = []
         for k, v in bounds.items():
+            if isinstance(v, (str, bytes)) or not isinstance(v, Sequence) or len(v) != 2:
+                raise TypeError(f"bounds: {_frames_repr(k)} needs a pair (lo, hi), got "
+                                f"{_frames_repr(v)}")
             lo, hi = v
-            items.append(f"{k}={_num(lo, 'bounds')}..{_num(hi, 'bounds')}")
+            items.append(f"{_key(k, 'bounds')}={_num(lo, 'bounds')}..{_num(hi, 'bounds')}")
         out.append("--bounds=" + ",".join(items))
     if error is not None:
         out.append(f"--error={_num(error, 'error')}")
@@ -1328,6 +1375,7 @@ def _search(fix: Optional[dict], bounds: Optional[dict], error: Optional[float],
     return out
 
 
+@_flags_checked
 def profile(
     model: str,
     data: Any = None,

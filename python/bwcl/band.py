@@ -13,6 +13,7 @@ from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
+from . import _flags_checked
 from ._native import native as _bwcl
 
 __all__ = ["band", "BandResult", "InterpBandResult", "prove_monotone", "MonotoneResult"]
@@ -189,6 +190,7 @@ class InterpBandResult:
         return self._form(v0, "ts")
 
 
+@_flags_checked
 def band(
     model: str,
     *,
@@ -306,6 +308,7 @@ class MonotoneResult:
         return text + f"; {self.seconds:.3g} s)"
 
 
+@_flags_checked
 def prove_monotone(
     model: str,
     *,

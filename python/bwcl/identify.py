@@ -17,6 +17,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import _flags_checked
 from ._native import native as _bwcl
 
 _STATUS = ("feasible", "infeasible", "undecided")
@@ -145,6 +146,7 @@ def _result(d: dict) -> IdentifyResult:
     )
 
 
+@_flags_checked
 def identify(
     model: str,
     data: Any = None,
@@ -241,6 +243,7 @@ def split_box(bounds: Mapping[str, Tuple[float, float]], parts: int) -> list:
     return boxes
 
 
+@_flags_checked
 def identify_dask(
     client: Any,
     model: str,

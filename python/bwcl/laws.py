@@ -17,7 +17,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _num, _threads
+from . import _flags_checked, _frames, _num, _threads
 from ._native import native as _bwcl
 
 #: The formulas' names (``bwcl laws --formulas``), in order of publication.
@@ -35,7 +35,17 @@ FORMULAS = (
 )
 
 
-@dataclass
+def _bounds(lo: Any, hi: Any) -> str:
+    """[lo, hi] with each end printed on its outer side (a bound as a decimal is a bound)."""
+    lo_a, hi_a = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
+    pairs = [f"[{_frames.outward(a, False)}, {_frames.outward(b, True)}]" for a, b in zip(lo_a, hi_a)]
+    if np.ndim(lo) == 0:
+        return pairs[0]
+    shown = pairs if len(pairs) <= 4 else pairs[:2] + ["…"] + pairs[-1:]
+    return "[" + ", ".join(shown) + "]"
+
+
+@dataclass(repr=False)
 class FormulaErrors:
     """One formula: at each target ``e_star`` the bounds of σ(e*), of the CoR e the law
     produces and of the error e − e* (floats, lower bounds rounded down and upper bounds up), and
@@ -59,6 +69,15 @@ class FormulaErrors:
         """The runs of targets where |e − e*| ≤ tol is proved."""
         return [(a, b) for a, b, v in self.runs if v == "within"]
 
+    def __repr__(self) -> str:
+        # the bounds as decimals on their outer sides (numpy's 8 digits, or Python's shortest
+        # round trip, may lie inside them)
+        return (f"FormulaErrors(key={self.key!r}, source={self.source!r}, "
+                f"{len(self.e_star)} targets, sigma {_bounds(self.sigma_lo, self.sigma_hi)}, "
+                f"e {_bounds(self.e_lo, self.e_hi)}, error {_bounds(self.error_lo, self.error_hi)}, "
+                f"max_abs_error ≤ {_frames.outward(self.max_abs_error, True)}, "
+                f"{len(self.runs)} runs)")
+
 
 @dataclass
 class LawsResult:
@@ -78,6 +97,7 @@ def _pairs(points: Sequence[dict], key: str) -> Tuple[np.ndarray, np.ndarray]:
     return lo, hi
 
 
+@_flags_checked
 def laws(
     formulas: Union[str, Sequence[str]] = "all",
     e_star: Tuple[Any, Any] = ("0.05", "0.99"),
@@ -129,7 +149,7 @@ def laws(
 LAWS = ("hooke", "hertz", "hunt-crossley", "kelvin-voigt", "linear-maxwell")
 
 
-@dataclass
+@dataclass(repr=False)
 class ClassicalResult:
     """T_s and e of a classical law, nondimensional. With ``rigorous`` the bounds are proved
     (lower rounded down, upper up) and ``ts``/``e`` are their midpoints; otherwise the f64
@@ -154,7 +174,19 @@ class ClassicalResult:
     def e(self) -> float:
         return 0.5 * (self.e_lo + self.e_hi)
 
+    def __repr__(self) -> str:
+        if self.rigorous and self.proved:
+            # proved bounds printed on their outer sides
+            values = f"ts {_bounds(self.ts_lo, self.ts_hi)}, e {_bounds(self.e_lo, self.e_hi)}"
+        elif self.proved:
+            values = f"ts={self.ts!r}, e={self.e!r}"
+        else:
+            values = f"not proved: {self.reason}"
+        return (f"ClassicalResult(law={self.law!r}, params={self.params!r}, "
+                f"rigorous={self.rigorous!r}, {values})")
 
+
+@_flags_checked
 def classical(
     law: str,
     *,
@@ -197,6 +229,7 @@ def classical(
                            float(d["e"]), float(d["e"]))
 
 
+@_flags_checked
 def compare(
     data: Any = None,
     *,

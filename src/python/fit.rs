@@ -90,6 +90,11 @@ pub fn cost<'py>(
     Ok(d)
 }
 
+thread_local! {
+    /// Whether this thread is inside the fit's progress callback (see `fit`).
+    static IN_CALLBACK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// The fit (see `bwcl.fit`). `progress(done, total, starts_done, starts, last_j)` is called
 /// after every Nelder–Mead iteration (with the GIL taken for the call); an exception it raises
 /// stops the calls and is raised when the fit returns.
@@ -139,8 +144,11 @@ pub fn fit<'py>(
                     }
                 }
             }
-            let Ok(mut err) = raised.lock() else { return };
-            if err.is_some() {
+            // no lock is held while Python runs, and a call never nests in one on the same
+            // thread: a callback that calls bwcl itself (bwcl.cor on the shared pool) may have
+            // its worker run another start's iteration meanwhile, whose report would otherwise
+            // wait on the outer call's lock for ever (a hang that Ctrl-C could not stop)
+            if IN_CALLBACK.get() || raised.lock().map_or(true, |e| e.is_some()) {
                 return;
             }
             let j = last_j.lock().map(|l| *l).unwrap_or(f64::NAN);
@@ -151,7 +159,12 @@ pub fn fit<'py>(
                 n_starts,
                 j,
             );
-            if let Err(e) = Python::attach(|py| cb.call1(py, args).map(|_| ())) {
+            IN_CALLBACK.set(true);
+            let called = Python::attach(|py| cb.call1(py, args).map(|_| ()));
+            IN_CALLBACK.set(false);
+            if let (Err(e), Ok(mut err)) = (called, raised.lock())
+                && err.is_none()
+            {
                 *err = Some(e);
             }
         });

@@ -154,6 +154,21 @@ where
             )));
         }
     };
+    // called from a worker of the shared pool (a progress callback of `fit` runs there and may
+    // call bwcl itself): the computation runs here, with the GIL released. Waiting for it on a
+    // thread of its own would block this worker outside the pool, and with every worker so
+    // blocked nothing would run the computations' jobs (a hang; signals are looked for by the
+    // outer call on Python's main thread)
+    if pool.is_none() && rayon::current_thread_index().is_some() {
+        return py
+            .detach(|| catch_unwind(AssertUnwindSafe(f)))
+            .map_err(|p| {
+                PyRuntimeError::new_err(format!(
+                    "bwcl: internal error (a bug, please report it): {}",
+                    panic_text(p.as_ref())
+                ))
+            });
+    }
     // the computation on its own thread; this one (Python's, usually the main thread) waits
     // for its end with the GIL released, looking for signals every 10 ms meanwhile (a call
     // that ends sooner returns at once): on KeyboardInterrupt (or any exception a signal

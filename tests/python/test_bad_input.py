@@ -221,3 +221,39 @@ def test_review_of_the_python_terms():
     with pytest.raises(ValueError) as ex:
         bwcl.cor("shc", base=two, v0=[0.5, -1.0])
     assert "parameter set" not in str(ex.value) and "-1.0" in str(ex.value)
+
+
+# found by a probe: values that the package spliced into the program's text as more than one
+# item, and switches that took any truthy value
+@pytest.mark.parametrize("call, error, words", [
+    (lambda: bwcl.cor("shc", base=["1.43,-1.42", 0.632, 0.00715, 1.31, 1.27], v0=1),
+     ValueError, "holds a comma"),
+    (lambda: bwcl.cor("shc", base=np.array(["1.43,-1.42,0.632", "0.00715,1.31,1.27"]), v0=1),
+     ValueError, "holds a comma"),
+    (lambda: bwcl.cor("shc", physical={"m=0.146,k=117080063,c": 5854003, "n": 1.1}, v0=30),
+     ValueError, "is not a parameter name"),
+    (lambda: bwcl.fit("shc", DATA, fix={"kappa": 0.5, "n=2,p": 1.5}),
+     ValueError, "is not a parameter name"),
+    (lambda: bwcl.fit("shc", DATA, bounds={"kappa": 5}), TypeError, "needs a pair (lo, hi)"),
+    (lambda: bwcl.fit("shc", DATA, bounds={"kappa": (0.1, 0.2, 0.3)}), TypeError,
+     "needs a pair (lo, hi)"),
+    (lambda: bwcl.fit("shc", DATA, bounds={"kappa": "ab"}), TypeError, "needs a pair (lo, hi)"),
+    (lambda: bwcl.cor_rigorous("shc", base=DSS, v0=1, sensitivities="no"), TypeError,
+     "sensitivities must be True or False"),
+    (lambda: bwcl.trajectory("shc", base=DSS, v0=1, rigorous="no"), TypeError,
+     "rigorous must be True or False"),
+    (lambda: bwcl.classical("hertz", rigorous="no"), TypeError, "rigorous must be True or False"),
+    (lambda: bwcl.fit("shc", DATA, uncertainty="no"), TypeError,
+     "uncertainty must be True or False"),
+])
+def test_values_are_one_item_and_switches_are_bools(call, error, words):
+    with pytest.raises(error, match=re.escape(words)):
+        call()
+
+
+def test_fix_takes_any_mapping():
+    import types
+
+    a = bwcl.fit("shc", DATA, fix=types.MappingProxyType({"kappa": 0.5}), starts=1, max_iter=5)
+    b = bwcl.fit("shc", DATA, fix={"kappa": 0.5}, starts=1, max_iter=5)
+    assert a.base == b.base and a.base[2] == 0.5

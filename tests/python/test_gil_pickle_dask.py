@@ -108,3 +108,27 @@ def test_dask_example_on_a_local_cluster():
     assert e.shape == (12, 3)
     assert np.array_equal(e, ex.cor_chunk("shc", bases, v0))
     assert np.array_equal(r.e, e[0])
+
+
+def test_a_fit_progress_callback_may_call_bwcl():
+    """A progress callback of fit runs on a worker of the shared pool; when it calls bwcl
+    itself (a parallel cor), that call runs on the same worker instead of waiting for it
+    outside the pool: with every worker so waiting it hung for ever, deaf to Ctrl-C (found by a
+    probe). In a child process, so that a hang fails the test instead of the run."""
+    import subprocess
+    import textwrap
+
+    code = textwrap.dedent(f"""
+        import bwcl
+        calls = []
+        def progress(p):
+            r = bwcl.cor("shc", base={DSS!r}, v0=[1.0, 2.0])
+            calls.append(float(r.e[0]))
+        fit = bwcl.fit("shc", {str(ROOT / "paper_repro/data/synthetic_dss.csv")!r}, starts=4,
+                       max_iter=20, progress=progress)
+        assert calls and all(abs(e - calls[0]) == 0 for e in calls), calls
+        print("ok", len(calls), fit.J)
+    """)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0 and out.stdout.startswith("ok"), out.stderr[-2000:]

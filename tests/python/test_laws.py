@@ -206,3 +206,35 @@ def test_cor_of_a_law_in_si_units_agrees_with_solve_ivp():
         bwcl.cor_rigorous("hooke", nd={}, fallback_bits=128)
     with pytest.raises(TypeError, match="by name"):
         bwcl.cor("kelvin-voigt", nd=[0.3])
+
+
+def _printed_bounds(text):
+    """Every [lo, hi] pair of decimals in a repr."""
+    import re
+
+    return [(a, b) for a, b in re.findall(r"\[([-0-9.e]+), ([-0-9.e]+)\]", text)]
+
+
+def test_proved_reprs_print_bounds_outward():
+    # a decimal printed for a bound lies on its outer side of the double (Python's shortest
+    # round trip, or numpy's 8 digits, may lie inside: found by a probe, e_lo of this case)
+    from decimal import Decimal
+
+    r = bwcl.classical("hunt-crossley", sigma=0.3, rigorous=True)
+    text = repr(r)
+    pairs = _printed_bounds(text)
+    assert len(pairs) == 2, text
+    for (lo, hi), (a, b) in zip(pairs, [(r.ts_lo, r.ts_hi), (r.e_lo, r.e_hi)]):
+        assert Decimal(lo) <= Decimal(a) and Decimal(hi) >= Decimal(b), (text, a, b)
+    # the probe's case: the shortest round trip of e_lo lies above it
+    assert Decimal(repr(r.e_lo)) > Decimal(r.e_lo) or Decimal(repr(r.e_hi)) < Decimal(r.e_hi)
+    f = bwcl.laws("flores", e_star=("0.5", "0.6"), points=3).formulas["flores"]
+    text = repr(f)
+    pairs = _printed_bounds(text)
+    assert len(pairs) == 9, text
+    ends = [(f.sigma_lo, f.sigma_hi), (f.e_lo, f.e_hi), (f.error_lo, f.error_hi)]
+    for k, (lo, hi) in enumerate(pairs):
+        a, b = ends[k // 3][0][k % 3], ends[k // 3][1][k % 3]
+        assert Decimal(lo) <= Decimal(a) and Decimal(hi) >= Decimal(b), (text, a, b)
+    mx = text.split("max_abs_error ≤ ")[1].split(",")[0]
+    assert Decimal(mx) >= Decimal(f.max_abs_error), text
