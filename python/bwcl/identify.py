@@ -10,6 +10,7 @@ Every box end is a bound rounded outward (the float it reads to is the paving's 
 from __future__ import annotations
 
 import json
+import numbers
 import os
 import tempfile
 from dataclasses import dataclass
@@ -17,7 +18,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _flags_checked
+from . import _flags_checked, _num, _threads
 from ._native import native as _bwcl
 
 _STATUS = ("feasible", "infeasible", "undecided")
@@ -146,6 +147,13 @@ def _result(d: dict) -> IdentifyResult:
     )
 
 
+def _whole(x: Any, what: str) -> int:
+    """A whole number as given (2.9 or "x" refused, not truncated or passed on)."""
+    if isinstance(x, bool) or not isinstance(x, numbers.Integral):
+        raise TypeError(f"{what} = {x!r:.40} must be a whole number")
+    return int(x)
+
+
 @_flags_checked
 def identify(
     model: str,
@@ -191,11 +199,11 @@ def identify(
         if bounds is not None:
             argv.append("--bounds=" + _spec(bounds, "bounds", True))
         if resolution is not None:
-            argv.append(f"--resolution={int(resolution)}")
+            argv.append(f"--resolution={_whole(resolution, 'resolution')}")
         if error is not None:
-            argv.append(f"--error={float(error)!r}")
+            argv.append(f"--error={_num(error, 'error')}")
         if tc_error is not None:
-            argv.append(f"--tc-error={float(tc_error)!r}")
+            argv.append(f"--tc-error={_num(tc_error, 'tc_error')}")
         if no_tc:
             argv.append("--no-tc")
         if fix is not None:
@@ -208,15 +216,15 @@ def identify(
         if free is not None:
             argv.append("--free=" + (free if isinstance(free, str) else ",".join(free)))
         if time_limit is not None:
-            argv.append(f"--time-limit={float(time_limit)!r}")
+            argv.append(f"--time-limit={_num(time_limit, 'time_limit')}")
         if max_boxes is not None:
-            argv.append(f"--max-boxes={int(max_boxes)}")
+            argv.append(f"--max-boxes={_whole(max_boxes, 'max_boxes')}")
         if sample:
-            argv.append(f"--sample={int(sample)}")
+            argv.append(f"--sample={_whole(sample, 'sample')}")
         from ._progress import share as _share
 
         cb = _share(progress, "identify")
-        out = _result(json.loads(_bwcl.identify(argv, threads=threads, progress=cb)))
+        out = _result(json.loads(_bwcl.identify(argv, threads=_threads(threads), progress=cb)))
         if cb is not None:
             cb(1.0, "done")
         return out

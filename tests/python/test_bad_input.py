@@ -245,6 +245,15 @@ def test_review_of_the_python_terms():
     (lambda: bwcl.classical("hertz", rigorous="no"), TypeError, "rigorous must be True or False"),
     (lambda: bwcl.fit("shc", DATA, uncertainty="no"), TypeError,
      "uncertainty must be True or False"),
+    # identify took its numbers with int()/float(): 2.9 became 2, True became 1.0
+    (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=0.02, resolution=2.9),
+     TypeError, "resolution = 2.9 must be a whole number"),
+    (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=True),
+     TypeError, "expected a number, got the bool"),
+    (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=0.02, threads="2"),
+     ValueError, "threads = '2' must be a whole number"),
+    (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=0.02, no_tc="no"),
+     TypeError, "no_tc must be True or False"),
 ])
 def test_values_are_one_item_and_switches_are_bools(call, error, words):
     with pytest.raises(error, match=re.escape(words)):
