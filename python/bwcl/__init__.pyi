@@ -18,12 +18,14 @@ from .laws import FormulaErrors as FormulaErrors
 from .laws import LawsResult as LawsResult
 from .laws import laws as laws
 from .band import BandResult as BandResult
+from .band import InterpBandResult as InterpBandResult
 from .band import MonotoneResult as MonotoneResult
 from .band import band as band
 from .band import prove_monotone as prove_monotone
 from . import plot as plot
 
 __version__: str
+DERIVED: Tuple[str, ...]
 class Table1Set(NamedTuple):
     model: str
     base: Tuple[float, float, float, float, float, float]
@@ -298,3 +300,21 @@ def fit(
     progress: Union[None, bool, Callable[[FitProgress], Any]] = ...,
     threads: Optional[int] = ...,
 ) -> FitResult: ...
+def profile(
+    model: str,
+    data: Optional[PathLike] = ...,
+    *,
+    v0: Optional[npt.ArrayLike] = ...,
+    e: Optional[npt.ArrayLike] = ...,
+    param: Optional[str] = ...,
+    points: int = ...,
+    starts: int = ...,
+    seed: int = ...,
+    max_iter: int = ...,
+    fix: Optional[Mapping[str, float]] = ...,
+    bounds: Optional[Mapping[str, Tuple[float, float]]] = ...,
+    error: Optional[float] = ...,
+    tc_error: Optional[float] = ...,
+    use_tc: bool = ...,
+    threads: Optional[int] = ...,
+) -> Dict[str, Any]: ...

@@ -266,3 +266,29 @@ def test_fix_takes_any_mapping():
     a = bwcl.fit("shc", DATA, fix=types.MappingProxyType({"kappa": 0.5}), starts=1, max_iter=5)
     b = bwcl.fit("shc", DATA, fix={"kappa": 0.5}, starts=1, max_iter=5)
     assert a.base == b.base and a.base[2] == 0.5
+
+
+def test_the_stub_names_everything_exported_with_its_arguments():
+    """__init__.pyi declares every name of __all__ (profile, InterpBandResult and DERIVED were
+    missing: found by a probe), and each function it declares has the implementation's
+    arguments, in order."""
+    import ast
+    import inspect
+    from pathlib import Path
+
+    tree = ast.parse((Path(bwcl.__file__).parent / "__init__.pyi").read_text())
+    names = set()
+    for n in ast.walk(tree):
+        if isinstance(n, (ast.FunctionDef, ast.ClassDef)):
+            names.add(n.name)
+        elif isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name):
+            names.add(n.target.id)
+        elif isinstance(n, (ast.Import, ast.ImportFrom)):
+            names.update(a.asname or a.name for a in n.names)
+    assert set(bwcl.__all__) <= names, sorted(set(bwcl.__all__) - names)
+    functions = [n for n in tree.body if isinstance(n, ast.FunctionDef)]
+    assert len(functions) >= 6
+    for f in functions:
+        stub = [a.arg for a in f.args.posonlyargs + f.args.args + f.args.kwonlyargs]
+        real = list(inspect.signature(getattr(bwcl, f.name)).parameters)
+        assert stub == real, (f.name, stub, real)
