@@ -1,5 +1,6 @@
-//! Measured CoR data: a CSV with the header `v0,e` (any column order, other columns ignored,
-//! no column named twice), one collision per row: the impact speed ṽ0 > 0 [m/s] and the CoR ẽ ∈ [0, 1].
+//! Measured CoR data: a CSV with the header `v0,e` (any column order, other columns ignored
+//! unless a name is a near miss of an optional one — `sigm`, `tcs` are refused —, no column
+//! named twice), one collision per row: the impact speed ṽ0 > 0 [m/s] and the CoR ẽ ∈ [0, 1].
 //!
 //! Optional columns (issue #31):
 //! - `sigma`: the error of that row's e (> 0): a standard deviation for `fit` (weights 1/σ²,
@@ -64,6 +65,24 @@ pub fn echo(text: &str) -> String {
         out.push_str(&piece);
     }
     out
+}
+
+/// The edit distance of `a` and `b` (insertions, deletions, substitutions; by characters).
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let here = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(here + 1);
+            prev = here;
+        }
+    }
+    row[b.len()]
 }
 
 /// M measured collisions (M ≥ 1): speeds and CoRs, in file order, and the optional columns of
@@ -237,6 +256,25 @@ impl CorData {
                 echo(header)
             )));
         }
+        // another column is ignored, unless its name is a near miss of an optional one: a
+        // misspelt `sigm` would fit unweighted without a word (χ² 0.06 instead of 565)
+        for n in &names {
+            if ["v0", "v_0", "e", "cor", "sigma", "tc", "tc_sigma"].contains(&n.as_str()) {
+                continue;
+            }
+            if let Some(want) = [("sigma", 2), ("tc_sigma", 2), ("tc", 1)]
+                .iter()
+                // (a name of two letters, `ts`, is too short to be told from tc by a letter)
+                .find(|(want, d)| n.chars().count() > 2 && edits(n, want) <= *d)
+            {
+                return Err(DataError(format!(
+                    "line {hline}: the column '{}' is not one of v0, e, sigma, tc, tc_sigma: a \
+                     misspelt {}? (another name is ignored; rename it so)",
+                    echo(n),
+                    want.0
+                )));
+            }
+        }
         if count(&is_v0) != 1 || count(&is_e) != 1 || repeated {
             return Err(DataError(format!(
                 "line {hline}: '{}': the header must name the columns v0 and e once each, and \
@@ -394,12 +432,22 @@ mod tests {
         assert_eq!(d.tc_sigma, Some(vec![0.05, 0.04]));
         assert_eq!(CorData::parse(&d.to_csv()).unwrap(), d);
         assert_eq!(CorData::parse("v0,e\n1,0.5\n").unwrap().sigma, None);
+        // other names are still ignored
+        let other = CorData::parse("run,v0,note,e,t_s,ts\n1,1,a,0.5,3,3\n").unwrap();
+        assert_eq!((other.v0, other.sigma, other.tc), (vec![1.0], None, None));
         for (text, what) in [
             ("v0,e,sigma\n1,0.5,0\n", "sigma = 0e0"),
             ("v0,e,sigma\n1,0.5,-1\n", "sigma"),
             ("v0,e,tc\n1,0.5,nan\n", "tc = NaN"),
             ("v0,e,tc\n1,0.5,x\n", "tc 'x' is not a number"),
             ("v0,e,tc_sigma\n1,0.5,1\n", "needs a column tc"),
+            (
+                "v0,e,sigm\n1,0.5,0.1\n",
+                "'sigm' is not one of v0, e, sigma, tc, tc_sigma: a misspelt sigma?",
+            ),
+            ("v0,e,Sigma_\n1,0.5,0.1\n", "a misspelt sigma?"),
+            ("v0,e,tcs\n1,0.5,0.1\n", "a misspelt tc?"),
+            ("v0,e,tc_sigm\n1,0.5,0.1\n", "a misspelt tc_sigma?"),
         ] {
             let err = CorData::parse(text).unwrap_err();
             assert!(err.0.contains(what), "{text}: {err}");
