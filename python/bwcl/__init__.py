@@ -1069,6 +1069,13 @@ def _curve(
     if physical_units:
         argv.append("--physical-units")
     if rigorous:
+        # the float engine's settings would be silently unused (as order is refused without
+        # rigorous): given with other values than their defaults, they are refused
+        for name, x, default in (("rtol", rtol, 1e-10), ("atol", atol, 1e-12),
+                                 ("max_step", max_step, 1e-2)):
+            if not (isinstance(x, numbers.Real) and not isinstance(x, bool) and x == default):
+                raise ValueError(f"{name} = {_frames_repr(x)} is a setting of the float engine, "
+                                 "not of rigorous=True")
         argv += ["--rigorous", f"--horizon={_num(horizon, 'horizon')}"]
         if order is not None:
             argv.append(f"--order={_num(order, 'order')}")

@@ -152,7 +152,12 @@ class InterpBandResult:
         return pandas().DataFrame(list(self.intervals))
 
     def _form(self, v0: Any, q: str) -> Tuple[float, float]:
-        # v0 exactly: a float as the double it is, a str, int, Decimal or Fraction as written
+        # v0 exactly: a float as the double it is (NumPy's too), a str, int, Decimal or
+        # Fraction as written; a bool is no speed
+        if isinstance(v0, (bool, np.bool_)):
+            raise TypeError(f"v0: expected an impact speed, got the bool {v0!r}")
+        if isinstance(v0, (np.floating, np.integer)):
+            v0 = v0.item()
         try:
             x = Fraction(v0)
         except (TypeError, ValueError, OverflowError):

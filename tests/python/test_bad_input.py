@@ -254,6 +254,11 @@ def test_review_of_the_python_terms():
      ValueError, "threads = '2' must be a whole number"),
     (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=0.02, no_tc="no"),
      TypeError, "no_tc must be True or False"),
+    # the float engine's settings were silently unused with rigorous=True
+    (lambda: bwcl.trajectory("shc", base=DSS, v0=1, rigorous=True, rtol=1e-5), ValueError,
+     "rtol = 1e-05 is a setting of the float engine"),
+    (lambda: bwcl.loop("shc", base=DSS, v0=1, rigorous=True, max_step=0.1), ValueError,
+     "max_step = 0.1 is a setting of the float engine"),
 ])
 def test_values_are_one_item_and_switches_are_bools(call, error, words):
     with pytest.raises(error, match=re.escape(words)):

@@ -141,6 +141,10 @@ def test_a_second_order_band_holds_point_enclosures_between_its_nodes():
         b.e_at(1.06)
     with pytest.raises(ValueError, match="finite"):
         b.e_at(float("nan"))
+    # NumPy's scalars are their values; a bool is no speed (it was read as 1)
+    assert b.e_at(np.float32(1.0)) == b.e_at(1.0) == b.e_at(np.int64(1))
+    with pytest.raises(TypeError, match="bool"):
+        b.e_at(True)
     assert "node intervals" in repr(b) and len(repr(b)) < 300
     assert len(b.to_pandas()) == len(b)
 
