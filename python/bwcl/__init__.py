@@ -56,6 +56,7 @@ from typing import Any, Callable, NamedTuple, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._native import native as _bwcl
+from ._native import pythonic as _pythonic
 
 __version__ = _bwcl.__version__
 
@@ -993,7 +994,8 @@ def cor_rigorous(
         status=tuple("proved" if p else "not proved" for p in d["proved"]),
         proved=d["proved"],
         separated=d["separated"],
-        reason=tuple(d["reason"]),
+        # the reasons in the Python call's terms (time_limit, not --time-limit)
+        reason=tuple(None if r is None else _pythonic(r) for r in d["reason"]),
         v0=d["v0"],
         ts=d["ts"],
         e=d["e"],

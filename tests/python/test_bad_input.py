@@ -297,3 +297,9 @@ def test_the_stub_names_everything_exported_with_its_arguments():
         stub = [a.arg for a in f.args.posonlyargs + f.args.args + f.args.kwonlyargs]
         real = list(inspect.signature(getattr(bwcl, f.name)).parameters)
         assert stub == real, (f.name, stub, real)
+
+
+def test_a_reason_names_the_python_argument():
+    """A case's reason names the Python argument (time_limit), not the program's option."""
+    r = bwcl.cor_rigorous("shc", base=DSS, v0=1, time_limit=1e-9)
+    assert not r.proved[0] and "(time_limit)" in r.reason[0] and "--" not in r.reason[0], r.reason
