@@ -1101,6 +1101,19 @@ fn output_files_are_checked_before_the_work() {
         // refused before the work, not after minutes of it
         assert!(t.elapsed().as_secs() < 20, "{with:?}: {:?}", t.elapsed());
     }
+    // a directory that takes no new file, even for root: the probe of `out_path_as` (without
+    // it the band would be computed, then not written)
+    if std::path::Path::new("/proc").is_dir() {
+        let mut with: Vec<&str> = band.to_vec();
+        with.push("/proc/b.csv");
+        let t = std::time::Instant::now();
+        let msg = assert_bad_input(&with);
+        assert!(
+            msg.contains("--band '/proc/b.csv': cannot write in the directory '/proc'"),
+            "{msg}"
+        );
+        assert!(t.elapsed().as_secs() < 20, "{:?}", t.elapsed());
+    }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
     assert!(!std::path::Path::new("/tmp/bwcl-new-dir").exists());
 }

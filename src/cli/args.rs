@@ -41,12 +41,7 @@ fn error_bound(s: &str) -> Result<f64, String> {
     let e = decimal(s)?;
     if e.is_finite() && e > 0.0 {
         Ok(e)
-    } else if e == 0.0
-        && s.trim()
-            .split(['e', 'E'])
-            .next()
-            .is_some_and(|m| m.chars().any(|c| matches!(c, '1'..='9')))
-    {
+    } else if bwcl::arith::float::read_as_zero(s, e) {
         Err("must be a finite number > 0 (this one is below the smallest positive double)".into())
     } else {
         Err("must be a finite number > 0".into())

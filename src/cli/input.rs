@@ -314,12 +314,7 @@ fn input_error<R: Real>(opt: &str, text: &str, pairs: &[(&str, &str)], e: ParamE
 
 /// A double as a short decimal that reads back to it (with an exponent when long).
 pub fn short(x: f64) -> String {
-    let plain = format!("{}", if x == 0.0 { 0.0 } else { x });
-    if plain.len() <= 20 {
-        plain
-    } else {
-        format!("{x:e}")
-    }
+    bwcl::models::params::short_f64(if x == 0.0 { 0.0 } else { x })
 }
 
 /// `msg` with every decimal longer than 20 characters (a double printed in full, e.g. 10³⁰⁰
@@ -535,7 +530,7 @@ pub fn out_path_as(option: &str, out: Option<&Path>) -> Result<(), CliError> {
     }
     // the file is written as a new file in that directory and renamed into place
     // (`output::emit`): try that now, with the same temporary name
-    let probe = target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()));
+    let probe = super::output::temporary(&target);
     match std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)

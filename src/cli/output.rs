@@ -762,6 +762,11 @@ pub fn emit(out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
     emit_as("--out", out, bytes)
 }
 
+/// The temporary file beside `target` that [`emit_as`] writes and renames into place.
+pub fn temporary(target: &Path) -> std::path::PathBuf {
+    target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()))
+}
+
 /// [`emit`] of the file given by `option` (--out, --plot, --band), which its messages name.
 pub fn emit_as(option: &str, out: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
     let Some(path) = out else {
@@ -774,7 +779,7 @@ pub fn emit_as(option: &str, out: Option<&Path>, bytes: &[u8]) -> Result<(), Cli
         };
     };
     let target = super::input::resolve_links(option, path)?;
-    let tmp = target.with_file_name(format!(".bwcl-{}.tmp", std::process::id()));
+    let tmp = temporary(&target);
     let io = |what: &str, e: std::io::Error| {
         let _ = std::fs::remove_file(&tmp);
         let shown = bwcl::fit::data::echo(&path.to_string_lossy());

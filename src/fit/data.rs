@@ -259,7 +259,7 @@ impl CorData {
         // another column is ignored, unless its name is a near miss of an optional one: a
         // misspelt `sigm` would fit unweighted without a word (χ² 0.06 instead of 565)
         for n in &names {
-            if ["v0", "v_0", "e", "cor", "sigma", "tc", "tc_sigma"].contains(&n.as_str()) {
+            if is_v0(n) || is_e(n) || ["sigma", "tc", "tc_sigma"].contains(&n.as_str()) {
                 continue;
             }
             if let Some(want) = [("sigma", 2), ("tc_sigma", 2), ("tc", 1)]

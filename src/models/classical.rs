@@ -114,14 +114,18 @@ pub struct LawParams<R> {
     pub k: R,
 }
 
+/// Whether parameter `key` of `law` must be > 0 (m, k, and the linear Maxwell law's c).
+fn must_be_positive(law: Law, key: &str) -> bool {
+    matches!(key, "m" | "k") || (key == "c" && law == Law::LinearMaxwell)
+}
+
 /// The condition a value must satisfy as written: > 0 (`true`) or ≥ 0, and n ≥ 1.
 fn check_value(law: Law, key: &str, v: &[Rational; 2], token: &str) -> Result<(), ParamError> {
     let zero = Rational::new();
     let fail = |what: &str| Err(ParamError(format!("{key} = {token} must be {what}")));
     match key {
         "n" if v[0] < 1 => fail("≥ 1"),
-        "m" | "k" if v[0] <= zero => fail("> 0"),
-        "c" if law == Law::LinearMaxwell && v[0] <= zero => fail("> 0"),
+        _ if must_be_positive(law, key) && v[0] <= zero => fail("> 0"),
         "chi" | "sigma" | "sigma_b" | "zeta" | "c" if v[0] < zero => fail("≥ 0"),
         _ => Ok(()),
     }
@@ -160,8 +164,7 @@ impl<R: Real> LawParams<R> {
             check_value(law, key, &exact, val.trim())?;
             let parsed = R::parse_decimal(val).map_err(|e| ParamError(format!("{key}: {e}")))?;
             // > 0 as written but not as enclosed: a decimal below the smallest positive double
-            let positive = matches!(key, "m" | "k") || (key == "c" && law == Law::LinearMaxwell);
-            if positive && parsed.lo() <= 0.0 {
+            if must_be_positive(law, key) && parsed.lo() <= 0.0 {
                 return Err(ParamError(format!(
                     "{key} = {} is below the smallest positive double (its enclosure reaches 0)",
                     val.trim()

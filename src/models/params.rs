@@ -85,25 +85,28 @@ impl fmt::Display for ParamError {
 }
 impl std::error::Error for ParamError {}
 
+/// A double as Rust prints it (the shortest decimal that reads back to it), or with an
+/// exponent where that is longer than 20 characters.
+pub fn short_f64(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() <= 20 {
+        plain
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// Shows a parameter compactly: the value for `f64`, the point or the range for intervals;
 /// each double as Rust prints it, or with an exponent where that is longer than 20 characters
 /// (5e-324, not its 324 digits). A message, not a bound: the bounds printed as results are
 /// rounded outward elsewhere.
 pub fn show<R: Real>(x: &R) -> String {
-    let one = |v: f64| {
-        let plain = format!("{v}");
-        if plain.len() <= 20 {
-            plain
-        } else {
-            format!("{v:e}")
-        }
-    };
     if x.lo() == x.hi() {
-        one(x.lo())
+        short_f64(x.lo())
     } else if (x.lo() > 0.0 || x.hi() < 0.0) && (x.hi() - x.lo()) <= 1e-12 * x.mid().abs() {
-        one(x.mid())
+        short_f64(x.mid())
     } else {
-        format!("[{}, {}]", one(x.lo()), one(x.hi()))
+        format!("[{}, {}]", short_f64(x.lo()), short_f64(x.hi()))
     }
 }
 

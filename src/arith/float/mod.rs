@@ -10,6 +10,13 @@ pub mod golden;
 use crate::arith::real::{Dot, Exponent, Real};
 use fastpow::Power;
 
+/// Whether the decimal `text` is nonzero but its double `x` is 0: below the smallest positive
+/// double, it would silently become 0.
+pub fn read_as_zero(text: &str, x: f64) -> bool {
+    let mantissa = text.trim().split(['e', 'E']).next().unwrap_or("");
+    x == 0.0 && mantissa.chars().any(|c| matches!(c, '1'..='9'))
+}
+
 /// A prepared exponent q of the `f64` engine: |x|^(q−1) exactly for q = 1 and q = 2,
 /// otherwise by q − 1's tables ([`fastpow`], a few ulps).
 #[derive(Clone, Debug)]
@@ -56,9 +63,7 @@ impl Real for f64 {
         if !x.is_finite() {
             return Err(format!("'{t}' is not a finite number"));
         }
-        // a nonzero decimal below the smallest positive double would silently become 0
-        let mantissa = t.split(['e', 'E']).next().unwrap_or(t);
-        if x == 0.0 && mantissa.chars().any(|c| matches!(c, '1'..='9')) {
+        if read_as_zero(t, x) {
             return Err(format!(
                 "'{t}' is below the smallest positive double (it would be read as 0)"
             ));
