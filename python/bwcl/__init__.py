@@ -127,6 +127,8 @@ TABLE1 = {
 }
 
 _MAX_THREADS = 1024
+# the float engine's defaults (the paper's SciPy call), in every signature that takes them
+_RTOL, _ATOL, _MAX_STEP = 1e-10, 1e-12, 1e-2
 
 
 class NotProvedError(RuntimeError):
@@ -241,9 +243,9 @@ def _flags_checked(fn: Callable) -> Callable:
 
 
 def _key(k: Any, what: str) -> str:
-    """A parameter's name in a mapping: a plain name (a key holding ',' or '=' would be read
-    as more than one item)."""
-    if not isinstance(k, str) or not k.replace("_", "a").isalnum() or not k.isascii():
+    """A parameter's name in a mapping: a plain name, Greek ones too (a key holding ',' or '='
+    would be read as more than one item)."""
+    if not isinstance(k, str) or not k.isidentifier():
         raise ValueError(f"{what}: {_frames_repr(k)} is not a parameter name")
     return k
 
@@ -460,7 +462,7 @@ class Sensitivity(NamedTuple):
         def pair(b: Optional[Tuple[float, float]]) -> str:
             if b is None:
                 return "None"
-            return f"[{_frames.outward(b[0], False)}, {_frames.outward(b[1], True)}]"
+            return _frames.bracket(b[0], b[1])
 
         why = f", reason={self.reason!r}" if self.reason else ""
         return f"Sensitivity(dts={pair(self.dts)}, de={pair(self.de)}{why})"
@@ -786,9 +788,9 @@ def cor(
     nd: Any = None,
     physical: Any = None,
     v0: Any = None,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_step: float = 1e-2,
+    rtol: float = _RTOL,
+    atol: float = _ATOL,
+    max_step: float = _MAX_STEP,
     horizon: float = 100.0,
     threads: Optional[int] = None,
     progress: Union[None, bool, Callable[[int, int], Any]] = None,
@@ -1073,8 +1075,8 @@ def _curve(
     if rigorous:
         # the float engine's settings would be silently unused (as order is refused without
         # rigorous): given with other values than their defaults, they are refused
-        for name, x, default in (("rtol", rtol, 1e-10), ("atol", atol, 1e-12),
-                                 ("max_step", max_step, 1e-2)):
+        for name, x, default in (("rtol", rtol, _RTOL), ("atol", atol, _ATOL),
+                                 ("max_step", max_step, _MAX_STEP)):
             if not (isinstance(x, numbers.Real) and not isinstance(x, bool) and x == default):
                 raise ValueError(f"{name} = {_frames_repr(x)} is a setting of the float engine, "
                                  "not of rigorous=True")
@@ -1115,9 +1117,9 @@ def trajectory(
     points: int = 1000,
     physical_units: bool = False,
     rigorous: bool = False,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_step: float = 1e-2,
+    rtol: float = _RTOL,
+    atol: float = _ATOL,
+    max_step: float = _MAX_STEP,
     horizon: float = 100.0,
     order: Optional[int] = None,
     threads: Optional[int] = None,
@@ -1162,9 +1164,9 @@ def loop(
     points: int = 1000,
     physical_units: bool = False,
     rigorous: bool = False,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_step: float = 1e-2,
+    rtol: float = _RTOL,
+    atol: float = _ATOL,
+    max_step: float = _MAX_STEP,
     horizon: float = 100.0,
     order: Optional[int] = None,
     threads: Optional[int] = None,
@@ -1355,26 +1357,42 @@ def _float(x: Any) -> float:
     return float("nan") if x is None else float(x)
 
 
+def _fix_text(fix: Any) -> str:
+    """A mapping {name: value} as the CLI's --fix text (fit, profile, identify)."""
+    if not isinstance(fix, Mapping):
+        raise TypeError(f"fix: expected a dict name -> value, got {type(fix).__name__}")
+    return ",".join(f"{_key(k, 'fix')}={_num(v, 'fix')}" for k, v in fix.items())
+
+
+def _bounds_text(bounds: Any) -> str:
+    """A mapping {name: (lo, hi)} as the CLI's --bounds text (fit, profile, identify)."""
+    if not isinstance(bounds, Mapping):
+        raise TypeError(f"bounds: expected a dict name -> (lo, hi), got {type(bounds).__name__}")
+    items = []
+    for k, v in bounds.items():
+        if isinstance(v, (str, bytes)) or not isinstance(v, Sequence) or len(v) != 2:
+            raise TypeError(f"bounds: {_frames_repr(k)} needs a pair (lo, hi), got "
+                            f"{_frames_repr(v)}")
+        lo, hi = v
+        items.append(f"{_key(k, 'bounds')}={_num(lo, 'bounds')}..{_num(hi, 'bounds')}")
+    return ",".join(items)
+
+
+def _whole(x: Any, what: str) -> int:
+    """A whole number as given (2.9 or "x" refused, not truncated or passed on)."""
+    if isinstance(x, bool) or not isinstance(x, numbers.Integral):
+        raise TypeError(f"{what} = {x!r:.40} must be a whole number")
+    return int(x)
+
+
 def _search(fix: Optional[dict], bounds: Optional[dict], error: Optional[float],
             tc_error: Optional[float], use_tc: bool) -> list:
     """The CLI's --fix, --bounds, --error, --tc-error and --no-tc."""
     out = []
     if fix:
-        if not isinstance(fix, Mapping):
-            raise TypeError(f"fix: expected a dict name -> value, got {type(fix).__name__}")
-        out.append("--fix=" + ",".join(f"{_key(k, 'fix')}={_num(v, 'fix')}"
-                                       for k, v in fix.items()))
+        out.append("--fix=" + _fix_text(fix))
     if bounds:
-        if not isinstance(bounds, Mapping):
-            raise TypeError(f"bounds: expected a dict name -> (lo, hi), got {type(bounds).__name__}")
-        items = []
-        for k, v in bounds.items():
-            if isinstance(v, (str, bytes)) or not isinstance(v, Sequence) or len(v) != 2:
-                raise TypeError(f"bounds: {_frames_repr(k)} needs a pair (lo, hi), got "
-                                f"{_frames_repr(v)}")
-            lo, hi = v
-            items.append(f"{_key(k, 'bounds')}={_num(lo, 'bounds')}..{_num(hi, 'bounds')}")
-        out.append("--bounds=" + ",".join(items))
+        out.append("--bounds=" + _bounds_text(bounds))
     if error is not None:
         out.append(f"--error={_num(error, 'error')}")
     if tc_error is not None:

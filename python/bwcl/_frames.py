@@ -139,6 +139,11 @@ def outward(x: float, up: bool, digits: Optional[int] = None) -> str:
     return format(exact, "f")  # unreachable: the exact value reads back
 
 
+def bracket(lo: float, hi: float) -> str:
+    """"[lo, hi]" with each end a decimal on its outer side."""
+    return f"[{outward(lo, False)}, {outward(hi, True)}]"
+
+
 def outward_pairs(lohi: Any, digits: Optional[int] = None) -> tuple:
     """(lo, hi) columns of an (…, 2) array of bounds as outward decimals."""
     a = np.asarray(lohi, dtype=float).reshape(-1, 2)

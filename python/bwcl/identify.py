@@ -10,7 +10,6 @@ Every box end is a bound rounded outward (the float it reads to is the paving's 
 from __future__ import annotations
 
 import json
-import numbers
 import os
 import tempfile
 from dataclasses import dataclass
@@ -18,7 +17,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _flags_checked, _num, _threads
+from . import _bounds_text, _fix_text, _flags_checked, _num, _threads, _whole
 from ._native import native as _bwcl
 
 _STATUS = ("feasible", "infeasible", "undecided")
@@ -88,22 +87,12 @@ class IdentifyResult:
 
 
 def _spec(v: Any, what: str, pair: bool) -> str:
-    """A mapping {name: value or (lo, hi)} or the CLI's text."""
+    """A mapping {name: value or (lo, hi)} (as fit's) or the CLI's text."""
     if isinstance(v, str):
         return v
     if not isinstance(v, Mapping):
         raise TypeError(f"{what}: expected a mapping or a string, got {type(v).__name__}")
-    items = []
-    for name, x in v.items():
-        if pair:
-            try:
-                a, b = x
-            except (TypeError, ValueError):
-                raise ValueError(f"{what}: {name} needs (lo, hi), got {x!r}") from None
-            items.append(f"{name}={float(a)!r}..{float(b)!r}")
-        else:
-            items.append(f"{name}={float(x)!r}")
-    return ",".join(items)
+    return _bounds_text(v) if pair else _fix_text(v)
 
 
 def _data_file(data: Any, v0: Any, e: Any, sigma: Any, tc: Any, tc_sigma: Any):
@@ -145,13 +134,6 @@ def _result(d: dict) -> IdentifyResult:
             "tested": d["sampled"]["tested"], "feasible": d["sampled"]["feasible"],
             "hull": pairs(d["sampled"]["hull"])},
     )
-
-
-def _whole(x: Any, what: str) -> int:
-    """A whole number as given (2.9 or "x" refused, not truncated or passed on)."""
-    if isinstance(x, bool) or not isinstance(x, numbers.Integral):
-        raise TypeError(f"{what} = {x!r:.40} must be a whole number")
-    return int(x)
 
 
 @_flags_checked

@@ -10,14 +10,13 @@ whole range of targets the runs where |e − e*| ≤ tol are proved by a paving.
 from __future__ import annotations
 
 import json
-import numbers
 import os
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _flags_checked, _frames, _num, _threads
+from . import _flags_checked, _frames, _num, _threads, _whole
 from ._native import native as _bwcl
 
 #: The formulas' names (``bwcl laws --formulas``), in order of publication.
@@ -38,7 +37,7 @@ FORMULAS = (
 def _bounds(lo: Any, hi: Any) -> str:
     """[lo, hi] with each end printed on its outer side (a bound as a decimal is a bound)."""
     lo_a, hi_a = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
-    pairs = [f"[{_frames.outward(a, False)}, {_frames.outward(b, True)}]" for a, b in zip(lo_a, hi_a)]
+    pairs = [_frames.bracket(a, b) for a, b in zip(lo_a, hi_a)]
     if np.ndim(lo) == 0:
         return pairs[0]
     shown = pairs if len(pairs) <= 4 else pairs[:2] + ["…"] + pairs[-1:]
@@ -116,8 +115,7 @@ def laws(
         if any(not isinstance(f, str) for f in formulas):
             raise TypeError("formulas must be names (str)")
         names = ",".join(formulas)
-    if isinstance(points, bool) or not isinstance(points, numbers.Integral):
-        raise TypeError(f"points = {points!r:.40} must be a whole number")
+    _whole(points, "points")
     try:
         lo, hi = e_star
     except (TypeError, ValueError):

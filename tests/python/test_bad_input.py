@@ -234,6 +234,9 @@ def test_review_of_the_python_terms():
      ValueError, "is not a parameter name"),
     (lambda: bwcl.fit("shc", DATA, fix={"kappa": 0.5, "n=2,p": 1.5}),
      ValueError, "is not a parameter name"),
+    (lambda: bwcl.identify("shc", DATA, bounds={"kappa": (0.5, 0.7)}, error=0.02,
+                           fix={"n=2,p": 1.5}),
+     ValueError, "is not a parameter name"),
     (lambda: bwcl.fit("shc", DATA, bounds={"kappa": 5}), TypeError, "needs a pair (lo, hi)"),
     (lambda: bwcl.fit("shc", DATA, bounds={"kappa": (0.1, 0.2, 0.3)}), TypeError,
      "needs a pair (lo, hi)"),
@@ -271,6 +274,9 @@ def test_fix_takes_any_mapping():
     a = bwcl.fit("shc", DATA, fix=types.MappingProxyType({"kappa": 0.5}), starts=1, max_iter=5)
     b = bwcl.fit("shc", DATA, fix={"kappa": 0.5}, starts=1, max_iter=5)
     assert a.base == b.base and a.base[2] == 0.5
+    # a Greek name is a parameter's name too
+    c = bwcl.fit("shc", DATA, fix={"κ": 0.5}, starts=1, max_iter=5)
+    assert c.base == b.base
 
 
 def test_the_stub_names_everything_exported_with_its_arguments():
