@@ -87,7 +87,8 @@ GUARDS = [
      "the Taylor engine stops on a cancellation request (Ctrl-C in Python) as at its deadline",
      ["--test", "cancel"]),
     ("law-positive-mk", "src/models/classical.rs",
-     [('"m" | "k" if v[0] <= zero => fail("> 0"),', '"m" | "k" if v[0] < zero => fail("> 0"),')],
+     [('_ if must_be_positive(law, key) && v[0] <= zero => fail("> 0"),',
+       '_ if must_be_positive(law, key) && v[0] < zero => fail("> 0"),')],
      "m, k > 0 checked as written (0 refused)",
      ["--test", "law_cor", "bad_law_input"]),
     # issue #33: the Hunt–Crossley CoR proved from its closed form (observables/restitution.rs)
