@@ -1165,6 +1165,20 @@ fn bad_values_are_named_as_written() {
             "below the smallest positive double",
         ),
         (cor("1,2,"), "'1,2,': an item or an end of a range is empty"),
+        // physical values in 𝓟 whose nondimensional set overflows the doubles: said as such,
+        // not as a set outside 𝓟
+        (
+            assert_bad_input(&[
+                "cor",
+                "--model",
+                "shc",
+                "--physical",
+                "m=1,k=1e6,c=100,n=1.5,p=1.5,alpha=0.5,beta=1,gamma=0.5,A=1e160",
+                "--v0",
+                "1",
+            ]),
+            "--physical at v0 = 1: the nondimensional B = inf is beyond the range of the arithmetic",
+        ),
         (
             assert_bad_input(&["fit", "--model", "shc", "--data", data, "--error", "1e-999"]),
             "'1e-999' for '--error <E>': must be a finite number > 0 (this one is below",

@@ -189,7 +189,7 @@ pub fn cases<R: Real>(p: &ParamArgs) -> Result<Vec<Case<R>>, CliError> {
             .map(|(v0, token)| {
                 let params = nondimensionalize(kind, &phys, &v0).map_err(|e| {
                     CliError::Input(format!(
-                        "--physical at v0 = {}: the nondimensional set is outside 𝓟: {}",
+                        "--physical at v0 = {}: {}",
                         echo(token.trim()),
                         compact(&e.0)
                     ))

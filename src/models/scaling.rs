@@ -283,7 +283,18 @@ impl<R: Real> PhysicalParams<R> {
             }
         };
         // (in 𝓟 exactly for the values checked by `check_physical_decimals`: B, Γ scale β, γ by
-        // one factor > 0, κ = α/D ∈ (0, 1) for A > 0, σ > 0 for c > 0)
+        // one factor > 0, κ = α/D ∈ (0, 1) for A > 0, σ > 0 for c > 0). A value that is not a
+        // finite number or is 0 here is the arithmetic's range, not 𝓟: said as such
+        for (name, x) in [("B", &b), ("Γ", &gamma), ("κ", &kappa), ("σ", &sigma)] {
+            let zero_from_positive = x.lo() <= 0.0 && x.hi() >= 0.0 && name != "Γ";
+            if !x.is_finite() || x.lo().is_nan() || x.hi().is_nan() || zero_from_positive {
+                return Err(ParamError(format!(
+                    "the nondimensional {name} = {} is beyond the range of the arithmetic (an \
+                     overflow or underflow: the physical values' scales are too far apart)",
+                    show(x)
+                )));
+            }
+        }
         NdParams::with_admissibility(
             kind,
             Admissibility::Written,
@@ -294,6 +305,7 @@ impl<R: Real> PhysicalParams<R> {
             self.n.clone(),
             self.p.clone(),
         )
+        .map_err(|e| ParamError(format!("the nondimensional set is outside 𝓟: {}", e.0)))
     }
 
     /// The base parameters P* of this physical system: 𝓟(P*, v0) = the nondimensional set at
