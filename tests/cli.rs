@@ -160,6 +160,23 @@ fn no_separation_is_reported_not_a_number() {
         "{}",
         stdout(&o)
     );
+    // proved on [0, H] for the double H = fl(2.9) < 2.9: its decimal is rounded down, so that
+    // "T_s > …" claims no time beyond H
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--nd",
+        DSS,
+        "--horizon",
+        "2.9",
+        "--rigorous",
+    ]);
+    let out = stdout(&o);
+    assert!(
+        out.contains("proved: no separation before the horizon T = 2.8999999999999999 (T_s > 2.8999999999999999;"),
+        "{out}"
+    );
 }
 
 #[test]
@@ -1373,4 +1390,79 @@ fn derived_outputs_in_every_format() {
         let msg = assert_bad_input(&args);
         assert!(msg.contains("--derived"), "{msg}");
     }
+}
+
+/// `--digits`: no separation before the horizon is proved there as on the f64-interval engine
+/// (exit 0, not "not proved"); an enclosure that determines fewer digits than asked says so; a
+/// value below the doubles' normal range is a single value, not a range.
+#[test]
+fn digits_say_what_they_proved() {
+    let nd = |set: &str, digits: &str, extra: &[&str]| {
+        let mut args = vec!["cor", "--model", "maxwell", "--nd", set, "--rigorous"];
+        args.extend(["--digits", digits]);
+        args.extend(extra);
+        bwcl(&args)
+    };
+    for format in ["table", "csv", "json"] {
+        let o = nd(
+            "1,0,0.5,100,1.5,2",
+            "20",
+            &["--horizon", "5", "--format", format],
+        );
+        let out = stdout(&o);
+        assert_eq!(o.status.code(), Some(0), "{format}: {out}{}", stderr(&o));
+        assert!(
+            out.contains("proved: no separation before the horizon T = 5 (T_s > 5;"),
+            "{format}: {out}"
+        );
+        if format == "json" {
+            let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+            assert_eq!(v[0]["proved"], true);
+            assert_eq!(v[0]["separated"], false);
+        }
+        if format == "csv" {
+            assert!(out.contains("maxwell,-,true,"), "{out}");
+        }
+    }
+    // B → 0: F has a near-double root at separation, T_s is proved to ≈ 15 digits only
+    for b in ["1e-300", "1e-320"] {
+        let o = bwcl(&[
+            "cor",
+            "--model",
+            "shc",
+            "--nd",
+            &format!("{b},0,0.5,0.1,1.5,1.5"),
+            "--rigorous",
+            "--digits",
+            "20",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{b}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let note = v[0]["note"].as_str().unwrap_or_else(|| panic!("{v}"));
+        assert!(
+            note.starts_with("T_s to 15 significant digits only, not 20"),
+            "{b}: {note}"
+        );
+        let w = v[0]["width_ts"].as_f64().unwrap();
+        assert!(w > 1e-16 && w < 1e-14, "{b}: {w}");
+    }
+    // a case that reaches its digits has no note
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "shc",
+        "--base",
+        DSS,
+        "--v0",
+        "1",
+        "--rigorous",
+        "--digits",
+        "20",
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v[0].get("note").is_none(), "{v}");
 }

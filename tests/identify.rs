@@ -414,3 +414,157 @@ fn the_json_output_has_the_documented_shape() {
     assert!(v["hull"].is_object() || v["hull"].is_null());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A printed box claims no point the paving did not prove: the ends of feasible and infeasible
+/// boxes, of the start box and of the feasible hull are rounded inward (the decimal lies inside
+/// the double it reads back to), the outer hull and undecided boxes outward — in JSON, CSV and
+/// the table, compared as exact rationals.
+#[test]
+fn printed_boxes_claim_only_what_was_proved() {
+    use bwcl::observables::decimal::parse_rational;
+    use serde_json::value::RawValue;
+    use std::collections::BTreeMap;
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper_repro/data/synthetic_dss.csv"
+    );
+    let args = |format: &'static str| {
+        [
+            "identify",
+            "--model",
+            "shc",
+            "--data",
+            data,
+            "--error",
+            "0.02",
+            "--base=1.43,-1.42,0.632,0.00715,1.31,1.27",
+            "--bounds",
+            "sigma_b=0.001..0.02",
+            "--resolution",
+            "16",
+            "--format",
+            format,
+        ]
+    };
+    // the decimal `text` against the double it reads to: inside (≥ for a lower end, ≤ for an
+    // upper one) when `inner`, else outside; returns whether it differs from the double
+    let side = |text: &str, lower: bool, inner: bool, what: &str| -> bool {
+        let x: f64 = text.parse().unwrap_or_else(|_| panic!("{what}: {text}"));
+        let (d, r) = (parse_rational(text).unwrap(), q(x));
+        let ok = if lower == inner { d >= r } else { d <= r };
+        assert!(
+            ok,
+            "{what}: {text} is on the wrong side of {x:e} (inner {inner})"
+        );
+        d != r
+    };
+    type Pair = [Box<RawValue>; 2];
+    #[derive(serde::Deserialize)]
+    struct BoxRaw {
+        lo: Vec<Box<RawValue>>,
+        hi: Vec<Box<RawValue>>,
+        status: String,
+    }
+    #[derive(serde::Deserialize)]
+    struct Out {
+        #[serde(rename = "box")]
+        start: BTreeMap<String, Pair>,
+        hull: BTreeMap<String, Pair>,
+        feasible_hull: BTreeMap<String, Pair>,
+        boxes: Vec<BoxRaw>,
+    }
+    let o = common::bwcl(&args("json"));
+    assert_eq!(o.status.code(), Some(0));
+    let out: Out = serde_json::from_slice(&o.stdout).unwrap();
+    let pair = |p: &Pair, inner: bool, what: &str| {
+        side(p[0].get(), true, inner, what);
+        side(p[1].get(), false, inner, what);
+    };
+    pair(&out.start["sigma_b"], true, "box");
+    pair(&out.hull["sigma_b"], false, "hull");
+    pair(&out.feasible_hull["sigma_b"], true, "feasible_hull");
+    let mut differs = [0, 0];
+    for b in &out.boxes {
+        let inner = b.status != "undecided";
+        let d = side(b.lo[0].get(), true, inner, &b.status)
+            | side(b.hi[0].get(), false, inner, &b.status);
+        differs[usize::from(inner)] += usize::from(d);
+    }
+    // the test has teeth: proved boxes whose ends are not short decimals (so that outward
+    // rounding would put them on the wrong side), and undecided ones
+    assert!(differs[1] >= 3 && differs[0] >= 1, "{differs:?}");
+    // CSV: status, sigma_b_lo, sigma_b_hi
+    let o = common::bwcl(&args("csv"));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let mut rows = 0;
+    for line in text.lines().skip(1) {
+        let c: Vec<&str> = line.split(',').collect();
+        let inner = c[0] != "undecided";
+        side(c[1], true, inner, line);
+        side(c[2], false, inner, line);
+        rows += 1;
+    }
+    assert_eq!(rows, out.boxes.len());
+    // table: the row of sigma_b has the start box, the hull and the feasible hull as lo..hi
+    let o = common::bwcl(&args("table"));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let row: Vec<&str> = text
+        .lines()
+        .find(|l| l.starts_with("sigma_b "))
+        .unwrap_or_else(|| panic!("{text}"))
+        .split_whitespace()
+        .collect();
+    for (cell, inner) in [(row[1], true), (row[2], false), (row[3], true)] {
+        let (a, b) = cell.split_once("..").unwrap();
+        side(a, true, inner, cell);
+        side(b, false, inner, cell);
+    }
+}
+
+/// A classical law refuted by its data: each row's refuted range of the parameter is printed
+/// with its ends exact (they are claims over every point of the range: neither wider than
+/// proved, nor with a gap where the next range begins at the same double).
+#[test]
+fn a_refutation_certificate_prints_its_ends_exactly() {
+    use bwcl::observables::decimal::parse_rational;
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper_repro/data/synthetic_dss_uniform.csv"
+    );
+    let o = common::bwcl(&[
+        "identify",
+        "--model",
+        "linear-maxwell",
+        "--data",
+        data,
+        "--error",
+        "0.02",
+    ]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    let ranges: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.split_once(" refutes c ∈ ").map(|(_, r)| r))
+        .collect();
+    assert!(ranges.len() >= 2, "{text}");
+    let mut ends = Vec::new();
+    for r in &ranges {
+        let (a, b) = r.split_once(", ").unwrap();
+        for t in [&a[1..], &b[..b.len() - 1]] {
+            if t == "∞" {
+                continue;
+            }
+            let x: f64 = t.parse().unwrap();
+            assert_eq!(
+                parse_rational(t).unwrap(),
+                q(x),
+                "{t} is not exactly a double"
+            );
+            ends.push(x);
+        }
+    }
+    // the ranges meet: an end of one is the start of the next
+    assert!(
+        ends.windows(2).any(|w| w[0] == w[1]),
+        "{ranges:?}: no two ranges meet"
+    );
+}

@@ -568,6 +568,28 @@ GUARDS = [
      [("        w + 8.0 * f64::EPSILON * self.e.mag().max(1.0)\n", "        w\n")],
      "a piece's thickness covers the rounding of e(v0) at interior points",
      ["--lib", "a_piece_answers_only_inside_it"]),
+    # claims over sets printed inward, proved results said as proved (2026-11-29, fourth session)
+    ("identify-boxes-inward", "src/cli/identify.rs",
+     [("    s != Status::Undecided\n}", "    let _ = s;\n    false\n}")],
+     "feasible and infeasible boxes printed inward (a claim on every point of the box)",
+     ["--test", "identify", "printed_boxes_claim_only_what_was_proved"]),
+    ("certificate-ends-exact", "src/cli/compare.rs",
+     [('format!("{}]", decimal::exact(r.hi))', 'format!("{}]", outward(r.hi, Rounding::Up))')],
+     "a refuted range of a classical law's parameter printed with its exact ends",
+     ["--test", "identify", "a_refutation_certificate_prints_its_ends_exactly"]),
+    ("horizon-rounded-down", "src/cli/commands.rs",
+     [("h = output::outward(horizon, bwcl::observables::decimal::Rounding::Down)", "h = num(horizon)")],
+     "'T_s > T' with the horizon's double rounded down",
+     ["--test", "cli", "no_separation_is_reported_not_a_number"]),
+    ("digits-short-noted", "src/cli/precise.rs",
+     [("                .or_else(|| short_of(&enc, digits)),", "                .or_else(|| short_of(&enc, 0)),")],
+     "--digits says where an enclosure determines fewer digits than asked",
+     ["--test", "cli", "digits_say_what_they_proved"]),
+    ("digits-no-separation-proved", "src/cli/precise.rs",
+     [("        Err(e) if e.no_separation() => Outcome {", "        Err(e) if e.no_separation() && false => Outcome {")],
+     "--digits reports no separation before the horizon as proved (exit 0)",
+     ["--test", "cli", "digits_say_what_they_proved"]),
+
 ]
 
 

@@ -4,7 +4,9 @@
 is matched to within its error at every point of the box), proved infeasible (no point of the
 box matches every row) and undecided at the resolution; ``identify_dask`` splits the box into
 sub-boxes and paves them on a Dask cluster (or any executor with ``submit``), then merges.
-Every box end is a bound rounded outward (the float it reads to is the paving's own double).
+Box ends as decimals read back to the paving's own doubles; they are rounded inward for a
+proved box (every point of a feasible box is consistent, of an infeasible one inconsistent:
+a printed box claims no point the paving did not prove) and outward for an undecided one.
 """
 
 from __future__ import annotations
@@ -71,17 +73,23 @@ class IdentifyResult:
                 f"{hull}{more}; {self.seconds:.3g} s)")
 
     def to_pandas(self, floats: bool = False) -> Any:
-        """One row per box: ``<name>_lo``/``<name>_hi`` for each free parameter (as outward
-        decimals unless ``floats=True``) and status. Needs pandas."""
-        from ._frames import outward_pairs, pandas
+        """One row per box: ``<name>_lo``/``<name>_hi`` for each free parameter (as decimals
+        unless ``floats=True``: inward for a feasible or infeasible box, whose every point the
+        claim is about, outward for an undecided one) and status. Needs pandas."""
+        from ._frames import outward, pandas
 
         pd = pandas()
         cols: Dict[str, Any] = {}
         lo, hi = np.asarray(self.lo, dtype=float), np.asarray(self.hi, dtype=float)
+        proved = [s != "undecided" for s in self.status]
         for j, name in enumerate(self.free):
-            pair = np.stack([lo[:, j], hi[:, j]], axis=1) if len(lo) else np.empty((0, 2))
-            cols[f"{name}_lo"], cols[f"{name}_hi"] = (
-                (pair[:, 0], pair[:, 1]) if floats else outward_pairs(pair))
+            a = lo[:, j] if len(lo) else np.empty(0)
+            b = hi[:, j] if len(hi) else np.empty(0)
+            if floats:
+                cols[f"{name}_lo"], cols[f"{name}_hi"] = a, b
+            else:
+                cols[f"{name}_lo"] = [outward(v, p) for v, p in zip(a, proved)]
+                cols[f"{name}_hi"] = [outward(v, not p) for v, p in zip(b, proved)]
         cols["status"] = list(self.status)
         return pd.DataFrame(cols)
 

@@ -325,11 +325,13 @@ pub fn settle_float(
     }
 }
 
-/// What a case without separation before the horizon proved.
+/// What a case without separation before the horizon proved: the condition fails on [0, H] for
+/// the double H, so its decimal is rounded down (2.9 is the double 2.89999999999999991…:
+/// "T_s > 2.9" would claim (H, 2.9] too).
 pub fn no_separation_text(horizon: f64) -> String {
     format!(
         "proved: no separation before the horizon T = {h} (T_s > {h}; e = 0 if it never separates, the paper's convention for T_s = +∞)",
-        h = num(horizon)
+        h = output::outward(horizon, bwcl::observables::decimal::Rounding::Down)
     )
 }
 

@@ -19,7 +19,7 @@ use bwcl::identify::laws::{LawOptions, LawPaving, LawProblem, Refutation, pave_l
 use bwcl::identify::paving::Status;
 use bwcl::models::ModelKind;
 use bwcl::observables::FloatOptions;
-use bwcl::observables::decimal::Rounding;
+use bwcl::observables::decimal::{self, Rounding};
 use inari::Interval;
 use serde::Serialize;
 
@@ -378,15 +378,18 @@ pub fn certificate(law: Law, refuted: &[Refutation], data: &CorData) -> Vec<Stri
             match law.parameter() {
                 Some(n) => {
                     let (f, open) = law.floor();
+                    // the ends exactly: a refuted range is a claim over its points, so a
+                    // shortest decimal outward would claim points never examined (and inward
+                    // would open a gap where the next row's range begins at the same double)
                     let lo = if r.lo == f && open {
-                        format!("({}", num(f))
+                        format!("({}", decimal::exact(f))
                     } else {
-                        format!("[{}", outward(r.lo, Rounding::Down))
+                        format!("[{}", decimal::exact(r.lo))
                     };
                     let hi = if r.hi == f64::INFINITY {
                         "∞)".into()
                     } else {
-                        format!("{}]", outward(r.hi, Rounding::Up))
+                        format!("{}]", decimal::exact(r.hi))
                     };
                     format!("{row} refutes {n} ∈ {lo}, {hi}")
                 }

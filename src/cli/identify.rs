@@ -97,11 +97,40 @@ struct IdentifyOut<'a> {
     boxes: Vec<BoxOut>,
 }
 
-fn named(free: &[&'static str], h: &[(f64, f64)]) -> BTreeMap<&'static str, [Box<RawValue>; 2]> {
+/// The directions of a box's ends: outward for an enclosure (the hull of what may be consistent,
+/// an undecided box), inward for a set a claim is made on (every point of a feasible box is
+/// consistent, of an infeasible one inconsistent; the search covered the start box; the
+/// feasible boxes reach the feasible hull's ends), so that a printed box claims no point the
+/// paving did not prove.
+fn ends(inner: bool) -> [Rounding; 2] {
+    if inner {
+        [Rounding::Up, Rounding::Down]
+    } else {
+        [Rounding::Down, Rounding::Up]
+    }
+}
+
+/// A box's ends are rounded inward unless it is undecided ([`ends`]).
+fn inner(s: Status) -> bool {
+    s != Status::Undecided
+}
+
+fn named(
+    free: &[&'static str],
+    h: &[(f64, f64)],
+    inner: bool,
+) -> BTreeMap<&'static str, [Box<RawValue>; 2]> {
+    let [d0, d1] = ends(inner);
     free.iter()
         .zip(h)
-        .map(|(n, &(a, b))| (*n, [bound(a, Rounding::Down), bound(b, Rounding::Up)]))
+        .map(|(n, &(a, b))| (*n, [bound(a, d0), bound(b, d1)]))
         .collect()
+}
+
+/// "lo..hi" of a box's side, rounded as [`ends`] says.
+fn range_text(a: f64, b: f64, inner: bool) -> String {
+    let [d0, d1] = ends(inner);
+    format!("{}..{}", outward(a, d0), outward(b, d1))
 }
 
 /// The verdict line.
@@ -247,12 +276,13 @@ pub fn json_report(d: &Done, resolution: u64) -> Result<Vec<u8>, CliError> {
         start: named(
             free,
             &start.iter().map(|x| (x.inf(), x.sup())).collect::<Vec<_>>(),
+            true,
         ),
         rows: d.rows,
         verdict: verdict(paving, d),
         empty: hull.is_none(),
-        hull: hull.as_ref().map(|h| named(free, h)),
-        feasible_hull: paving.feasible_hull().map(|h| named(free, &h)),
+        hull: hull.as_ref().map(|h| named(free, h, false)),
+        feasible_hull: paving.feasible_hull().map(|h| named(free, &h, true)),
         sampled: d.sampled.as_ref().map(|s| SampledOut {
             uniform: s.uniform,
             uniform_feasible: s.uniform_feasible,
@@ -308,9 +338,10 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
             let head: Vec<&str> = head.iter().map(String::as_str).collect();
             let rows = paving.boxes.iter().map(|b| {
                 let mut r = vec![status_name(b.status).to_string()];
+                let [d0, d1] = ends(inner(b.status));
                 for (&lo, &hi) in b.lo.iter().zip(&b.hi) {
-                    r.push(outward(lo, Rounding::Down));
-                    r.push(outward(hi, Rounding::Up));
+                    r.push(outward(lo, d0));
+                    r.push(outward(hi, d1));
                 }
                 r
             });
@@ -355,23 +386,10 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
                     .map(|(j, n)| {
                         vec![
                             n.to_string(),
-                            format!(
-                                "{}..{}",
-                                outward(start[j].inf(), Rounding::Down),
-                                outward(start[j].sup(), Rounding::Up)
-                            ),
-                            format!(
-                                "{}..{}",
-                                outward(h[j].0, Rounding::Down),
-                                outward(h[j].1, Rounding::Up)
-                            ),
-                            fh.as_ref().map_or("-".into(), |f| {
-                                format!(
-                                    "{}..{}",
-                                    outward(f[j].0, Rounding::Down),
-                                    outward(f[j].1, Rounding::Up)
-                                )
-                            }),
+                            range_text(start[j].inf(), start[j].sup(), true),
+                            range_text(h[j].0, h[j].1, false),
+                            fh.as_ref()
+                                .map_or("-".into(), |f| range_text(f[j].0, f[j].1, true)),
                         ]
                         .into_iter()
                         .chain(d.sampled.as_ref().map(|_| match &sh {
@@ -467,9 +485,10 @@ fn status_name(s: Status) -> &'static str {
 }
 
 fn box_out(b: &Leaf) -> BoxOut {
+    let [d0, d1] = ends(inner(b.status));
     BoxOut {
-        lo: b.lo.iter().map(|&x| bound(x, Rounding::Down)).collect(),
-        hi: b.hi.iter().map(|&x| bound(x, Rounding::Up)).collect(),
+        lo: b.lo.iter().map(|&x| bound(x, d0)).collect(),
+        hi: b.hi.iter().map(|&x| bound(x, d1)).collect(),
         status: b.status,
     }
 }

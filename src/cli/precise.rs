@@ -2,10 +2,11 @@
 //! ([`bwcl::observables::precision`]), its bounds printed with every digit their width allows,
 //! lo rounded down and hi up, in the table, CSV and JSON (numbers as exact decimal text).
 
-use super::args::{CorArgs, Format};
+use super::args::{CorArgs, EngineArgs, Format};
 use super::input;
 use super::output::{csv, table};
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
+use bwcl::engines::taylor::TaylorOptions;
 use bwcl::models::ModelKind;
 use bwcl::observables::precision::{
     ParamText, PreciseEnclosure, bits_for_digits, outward_text, rigorous_impact_digits_or_f64,
@@ -19,8 +20,95 @@ use rayon::prelude::*;
 /// digits asked for were not reached and the enclosure is the f64-interval engine's.
 struct Row {
     v0: String,
-    res: Result<PreciseEnclosure, String>,
-    note: Option<String>,
+    out: Outcome,
+}
+
+impl std::ops::Deref for Row {
+    type Target = Outcome;
+    fn deref(&self) -> &Outcome {
+        &self.out
+    }
+}
+
+/// What one case of `--digits` proved (the CLI's rows and the Python bindings' dict alike).
+pub struct Outcome {
+    /// The enclosure, or the reason as text: why it was not proved, or (with `no_separation`)
+    /// what was proved instead.
+    pub res: Result<PreciseEnclosure, String>,
+    /// The condition was proved to fail up to the horizon (T_s > T, a result).
+    pub no_separation: bool,
+    /// Why the enclosure has fewer digits than asked for, where it has.
+    pub note: Option<String>,
+}
+
+/// One case at `digits` digits ([`rigorous_impact_digits_or_f64`]): the enclosure with a note
+/// where the digits were not reached (the f64-interval engine's in place of the precise one, or
+/// a precise one that determines fewer digits), no separation before the horizon as proved, or
+/// the reason nothing was.
+pub fn outcome(
+    kind: ModelKind,
+    p: &ParamText,
+    digits: usize,
+    opts: &TaylorOptions,
+    engine: &EngineArgs,
+) -> Outcome {
+    let bits = bits_for_digits(digits as u32).unwrap_or(0);
+    match rigorous_impact_digits_or_f64(kind, p, digits as u32, opts) {
+        Ok((enc, why)) => Outcome {
+            note: why
+                .map(|e| {
+                    format!(
+                        "{digits} digits not reached at {bits} bits ({}): the f64-interval engine's enclosure",
+                        e.reason
+                    )
+                })
+                .or_else(|| short_of(&enc, digits)),
+            res: Ok(enc),
+            no_separation: false,
+        },
+        // the condition proved to fail on [0, horizon]: T_s > horizon, a result
+        Err(e) if e.no_separation() => Outcome {
+            res: Err(super::commands::no_separation_text(opts.horizon)),
+            no_separation: true,
+            note: None,
+        },
+        Err(e) => Outcome {
+            res: Err(input::reason_text(&e, engine)),
+            no_separation: false,
+            note: None,
+        },
+    }
+}
+
+/// The significant digits an enclosure [lo, hi] determines, ⌊log₁₀(|mid|/(hi − lo))⌋ (∞ when
+/// thin or exact).
+fn digits_of(x: &[rug::Rational; 2]) -> f64 {
+    let w = rug::Rational::from(&x[1] - &x[0]).to_f64();
+    let m = (rug::Rational::from(&x[0] + &x[1]) / 2u32).to_f64().abs();
+    if w > 0.0 {
+        (m / w).log10().floor()
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// A note where the enclosure determines fewer than the `digits` asked for (it is proved, only
+/// less precise: e.g. T_s where F has a near-double root at separation, B → 0).
+fn short_of(p: &PreciseEnclosure, digits: usize) -> Option<String> {
+    let short: Vec<String> = [("T_s", &p.ts), ("e", &p.e)]
+        .into_iter()
+        .filter_map(|(name, x)| {
+            let d = digits_of(x);
+            (d < digits as f64).then(|| format!("{name} to {} significant digits", d.max(0.0)))
+        })
+        .collect();
+    (!short.is_empty()).then(|| {
+        format!(
+            "{} only, not {digits}: the width reached at {} bits",
+            short.join(" and "),
+            p.bits
+        )
+    })
 }
 
 /// The cases of --nd or --base/--v0 as texts (validated by the usual parser first, so bad input
@@ -33,10 +121,14 @@ fn cases(a: &CorArgs) -> Result<Vec<(String, ParamText)>, CliError> {
 /// `cases` of cases already parsed (the Python bindings parse their speeds in batches): (v0
 /// as written, or "-" for --nd; the parameters as written).
 pub fn texts(checked: Vec<input::Case<Interval>>) -> Result<Vec<(String, ParamText)>, CliError> {
-    if checked
-        .iter()
-        .any(|c| c.inputs.values().iter().any(sets::is_range))
-    {
+    // a range as written (a..b), not a value whose enclosure is wide because it lies below the
+    // doubles' normal range (B = 1e-320: MPFR holds it)
+    let written_range = |c: &input::Case<Interval>| match &c.text {
+        Some(ParamText::Nd(t)) => t.contains(".."),
+        Some(ParamText::Base { base, v0 }) => base.contains("..") || v0.contains(".."),
+        None => c.inputs.values().iter().any(sets::is_range),
+    };
+    if checked.iter().any(written_range) {
         return Err(CliError::Input(
             "--digits proves single values: inputs given as ranges (a..b) are not supported with it".into(),
         ));
@@ -80,28 +172,18 @@ pub fn cor(a: &CorArgs, digits: usize) -> Result<i32, CliError> {
     );
     let rows: Vec<Row> = cases
         .par_iter()
-        .map(|(v0, p)| match rigorous_impact_digits_or_f64(kind, p, d, &opts) {
-            Ok((enc, why)) => Row {
-                v0: v0.clone(),
-                note: why.map(|e| {
-                    format!(
-                        "{digits} digits not reached at {bits} bits ({}): the f64-interval engine's enclosure",
-                        e.reason
-                    )
-                }),
-                res: Ok(enc),
-            },
-            Err(e) => Row {
-                v0: v0.clone(),
-                res: Err(input::reason_text(&e, &a.engine)),
-                note: None,
-            },
+        .map(|(v0, p)| Row {
+            v0: v0.clone(),
+            out: outcome(kind, p, digits, &opts, &a.engine),
         })
         .inspect(|_| bar.inc())
         .collect();
     bar.finish();
     let elapsed = start.elapsed();
-    let failed = rows.iter().filter(|r| r.res.is_err()).count();
+    let failed = rows
+        .iter()
+        .filter(|r| r.res.is_err() && !r.no_separation)
+        .count();
     let bytes = render(kind, &rows, bits, a.format)?;
     let timing = || {
         if a.timing {
@@ -200,7 +282,7 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                         ]);
                     }
                     Err(e) => {
-                        c.push("false".into());
+                        c.push(r.no_separation.to_string());
                         c.extend(std::iter::repeat_n(String::new(), 6));
                         c.extend([bits.to_string(), String::new(), e.clone()]);
                     }
@@ -233,10 +315,14 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                                 .map(|n| format!(", \"note\": {}", json_str(n)))
                                 .unwrap_or_default();
                             format!(
-                                "  {{{common}, \"proved\": true, \"ts\": [{tl}, {th}], \"width_ts\": {tw}, \"e\": [{el}, {eh}], \"width_e\": {ew}, \"pieces\": {}{note}}}",
+                                "  {{{common}, \"proved\": true, \"separated\": true, \"ts\": [{tl}, {th}], \"width_ts\": {tw}, \"e\": [{el}, {eh}], \"width_e\": {ew}, \"pieces\": {}{note}}}",
                                 p.pieces
                             )
                         }
+                        Err(e) if r.no_separation => format!(
+                            "  {{{common}, \"proved\": true, \"separated\": false, \"reason\": {}}}",
+                            json_str(e)
+                        ),
                         Err(e) => format!(
                             "  {{{common}, \"proved\": false, \"reason\": {}}}",
                             json_str(e)

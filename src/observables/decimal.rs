@@ -210,6 +210,23 @@ pub fn outward(x: f64, dir: Rounding) -> String {
     }
 }
 
+/// The exact decimal value of the double `x` (every double is a finite decimal: at most 767
+/// significant digits, ≈ 50 for a value near 10): for a point that bounds sets on both of its
+/// sides, such as where one row's refuted range of a parameter ends and the next one's begins.
+/// `inf`, `-inf`, `NaN` for the non-finite.
+pub fn exact(x: f64) -> String {
+    let Some(r) = Rational::from_f64(x) else {
+        return format!("{x}");
+    };
+    // the shortest digit count at which rounding down and up agree is the exact value
+    (17..)
+        .find_map(|d| {
+            let lo = directed_rational(&r, d, Rounding::Down);
+            (lo.to_rational() == r).then(|| lo.text())
+        })
+        .expect("a double is a finite decimal")
+}
+
 /// An upper bound of the width hi − lo as a double (the difference rounded up, exactly): what a
 /// printed width is computed from. +∞ if a bound is not finite.
 pub fn width_up(lo: f64, hi: f64) -> f64 {

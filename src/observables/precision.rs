@@ -212,7 +212,8 @@ pub fn rigorous_impact_digits_or_f64(
 ) -> Result<(PreciseEnclosure, Option<RigorError>), RigorError> {
     let precise = match rigorous_impact_digits(kind, p, digits, base) {
         Ok(enc) => return Ok((enc, None)),
-        Err(e) if e.out_of_time() || base.out_of_time() => return Err(e),
+        // no separation before the horizon is proved (a result, not a failure to retry)
+        Err(e) if e.out_of_time() || base.out_of_time() || e.no_separation() => return Err(e),
         Err(e) => e,
     };
     let params = p

@@ -11,8 +11,7 @@ use super::rigorous::pair_text;
 use super::run::{compute_rows, py_error};
 
 use bwcl::observables::precision::{
-    PreciseEnclosure, bits_for_digits, options_for_digits, outward_f64, outward_text,
-    rigorous_impact_digits_or_f64, width_text,
+    PreciseEnclosure, bits_for_digits, options_for_digits, outward_f64, outward_text, width_text,
 };
 use inari::Interval;
 use pyo3::exceptions::PyValueError;
@@ -56,26 +55,14 @@ pub fn cor_digits<'py>(
         })
         .collect();
     let jobs = texts(cases).map_err(py_error)?;
-    // (never less than the f64-interval engine proves: its enclosure, bits 53, with a reason)
-    let (rows, seconds, used) = compute_rows(py, threads, &jobs, |(_, p)| {
-        rigorous_impact_digits_or_f64(kind, p, d, &opts)
-            .map_err(|e| super::cli::input::reason_text(&e, &a.engine))
+    // (never less than the f64-interval engine proves: its enclosure, bits 53, with a reason;
+    // no separation before the horizon is proved too)
+    let (outs, seconds, used) = compute_rows(py, threads, &jobs, |(_, p)| {
+        super::cli::precise::outcome(kind, p, digits, &opts, &a.engine)
     })?;
-    let notes: Vec<Option<String>> = rows
-        .iter()
-        .map(|r| {
-            r.as_ref().ok().and_then(|(_, why)| {
-                why.as_ref().map(|e| {
-                    format!(
-                        "{digits} digits not reached at {bits} bits ({}): the f64-interval engine's enclosure",
-                        e.reason
-                    )
-                })
-            })
-        })
-        .collect();
-    let rows: Vec<Result<PreciseEnclosure, String>> =
-        rows.into_iter().map(|r| r.map(|(enc, _)| enc)).collect();
+    let notes: Vec<Option<String>> = outs.iter().map(|o| o.note.clone()).collect();
+    let no_sep: Vec<bool> = outs.iter().map(|o| o.no_separation).collect();
+    let rows: Vec<Result<PreciseEnclosure, String>> = outs.into_iter().map(|o| o.res).collect();
     let ok = |r: &Result<PreciseEnclosure, String>| r.as_ref().ok().cloned();
     let proved: Vec<Option<PreciseEnclosure>> = rows.iter().map(ok).collect();
     let out = PyDict::new(py);
@@ -94,7 +81,11 @@ pub fn cor_digits<'py>(
     put_f64_2d(&out, "ts", flat(&|p| &p.ts), 2)?;
     put_f64_2d(&out, "e", flat(&|p| &p.e), 2)?;
     let is = proved.iter().map(|p| p.is_some()).collect::<Vec<bool>>();
-    put_bool(&out, "proved", is.clone())?;
+    put_bool(
+        &out,
+        "proved",
+        is.iter().zip(&no_sep).map(|(a, b)| *a || *b).collect(),
+    )?;
     put_bool(&out, "separated", is)?;
     put_f64(
         &out,

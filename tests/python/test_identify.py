@@ -39,6 +39,27 @@ def test_identify_matches_the_program(tmp_path, cli):
     assert r.counts["feasible"] > 0 and r.complete
 
 
+def test_to_pandas_rounds_proved_boxes_inward(tmp_path):
+    """A feasible or infeasible box is a claim on its every point: its printed ends lie inside
+    the doubles they read back to; an undecided box's outside (compared exactly)."""
+    from decimal import Decimal
+
+    pytest.importorskip("pandas")
+    p = _write(tmp_path)
+    r = bwcl.identify("shc", p, bounds=BOX, error=0.01, base=DSS, resolution=16)
+    df = r.to_pandas()
+    differs = 0
+    for lo_t, hi_t, lo, hi, s in zip(df["sigma_b_lo"], df["sigma_b_hi"], r.lo[:, 0], r.hi[:, 0],
+                                     r.status):
+        assert float(lo_t) == lo and float(hi_t) == hi
+        if s == "undecided":
+            assert Decimal(lo_t) <= Decimal(lo) and Decimal(hi_t) >= Decimal(hi), (lo_t, hi_t, s)
+        else:
+            assert Decimal(lo_t) >= Decimal(lo) and Decimal(hi_t) <= Decimal(hi), (lo_t, hi_t, s)
+            differs += Decimal(lo_t) != Decimal(lo) or Decimal(hi_t) != Decimal(hi)
+    assert differs > 0 and {"feasible", "infeasible"} & set(r.status)
+
+
 def test_sample_brackets_the_proved_hull(tmp_path):
     """``sample=N``: the hull of the f64-feasible points lies inside the proved hull, holds the
     generating σ_b (the data are within E of its curve), and is absent without ``sample``."""
