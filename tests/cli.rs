@@ -1466,3 +1466,85 @@ fn digits_say_what_they_proved() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v[0].get("note").is_none(), "{v}");
 }
+
+/// `cor --rigorous --v0 a..b`: the result holds for every speed of the range, so the range is
+/// printed inward (each end still reads back to its double) in the table, the note, CSV and
+/// JSON — outward it claimed speeds the run did not cover (0.29999999999999998 for the double
+/// 0.29999999999999998889…).
+#[test]
+fn a_range_of_v0_is_printed_inward() {
+    use bwcl::observables::decimal::parse_rational;
+    use rug::Rational;
+    let run = |format: &str| {
+        let o = bwcl(&[
+            "cor",
+            "--model",
+            "shc",
+            "--base",
+            DSS,
+            "--v0",
+            "0.3..0.31",
+            "--rigorous",
+            "--format",
+            format,
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        o
+    };
+    let inward = |lo: &str, hi: &str| {
+        let (a, b): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+        let q = |x: f64| Rational::from_f64(x).unwrap();
+        // the range run covers the decimals as written
+        assert!(q(a) <= (3, 10) && q(b) >= (31, 100));
+        assert!(parse_rational(lo).unwrap() >= q(a), "{lo}");
+        assert!(parse_rational(hi).unwrap() <= q(b), "{hi}");
+    };
+    // the table's v0 cell and the note on stderr
+    let o = run("table");
+    let out = stdout(&o);
+    let cell = out
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .to_string()
+        + out
+            .lines()
+            .nth(1)
+            .unwrap()
+            .split_whitespace()
+            .nth(2)
+            .unwrap();
+    let (lo, hi) = cell
+        .trim_matches(['[', ']'])
+        .split_once(',')
+        .unwrap_or_else(|| panic!("{out}"));
+    inward(lo, hi.trim());
+    let note = stderr(&o);
+    let r = note
+        .split_once("for v0 in [")
+        .unwrap()
+        .1
+        .split_once(']')
+        .unwrap()
+        .0;
+    let (lo, hi) = r.split_once(", ").unwrap();
+    inward(lo, hi);
+    // CSV v0_lo, v0_hi
+    let out = stdout(&run("csv"));
+    let row: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+    inward(row[1], row[2]);
+    // JSON "v0": [lo, hi] as written
+    let out = stdout(&run("json"));
+    let v = out
+        .split_once("\"v0\": [")
+        .unwrap()
+        .1
+        .split_once(']')
+        .unwrap()
+        .0;
+    let (lo, hi) = v.split_once(',').unwrap();
+    inward(lo.trim(), hi.trim());
+}

@@ -472,6 +472,7 @@ fn printed_boxes_claim_only_what_was_proved() {
         hull: BTreeMap<String, Pair>,
         feasible_hull: BTreeMap<String, Pair>,
         boxes: Vec<BoxRaw>,
+        shares: BTreeMap<String, f64>,
     }
     let o = common::bwcl(&args("json"));
     assert_eq!(o.status.code(), Some(0));
@@ -493,6 +494,22 @@ fn printed_boxes_claim_only_what_was_proved() {
     // the test has teeth: proved boxes whose ends are not short decimals (so that outward
     // rounding would put them on the wrong side), and undecided ones
     assert!(differs[1] >= 3 && differs[0] >= 1, "{differs:?}");
+    // the shares, summed exactly from the boxes' doubles: the proved ones not overstated, the
+    // undecided one not understated
+    let f = |t: &RawValue| q(t.get().parse::<f64>().unwrap());
+    let width = f(&out.start["sigma_b"][1]) - f(&out.start["sigma_b"][0]);
+    let mut exact: BTreeMap<&str, Rational> = BTreeMap::new();
+    for b in &out.boxes {
+        *exact.entry(b.status.as_str()).or_default() += (f(&b.hi[0]) - f(&b.lo[0])) / width.clone();
+    }
+    for (status, share) in &out.shares {
+        let x = exact.remove(status.as_str()).unwrap_or_default();
+        if status == "undecided" {
+            assert!(q(*share) >= x, "{status}: {share} < {}", x.to_f64());
+        } else {
+            assert!(q(*share) <= x, "{status}: {share} > {}", x.to_f64());
+        }
+    }
     // CSV: status, sigma_b_lo, sigma_b_hi
     let o = common::bwcl(&args("csv"));
     let text = String::from_utf8(o.stdout).unwrap();

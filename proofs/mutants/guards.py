@@ -590,6 +590,16 @@ GUARDS = [
      "--digits reports no separation before the horizon as proved (exit 0)",
      ["--test", "cli", "digits_say_what_they_proved"]),
 
+    ("identify-undecided-share-up", "src/identify/paving.rs",
+     [("round(&v[1], false), round(&v[2], true)]", "round(&v[1], false), round(&v[2], false)]")],
+     "identify's undecided share summed exactly and rounded up (the proved shares down)",
+     ["--test", "identify", "printed_boxes_claim_only_what_was_proved"]),
+
+    ("v0-range-inward", "src/cli/output.rs",
+     [("    [outward(lo, Rounding::Up), outward(hi, Rounding::Down)]", "    [outward(lo, Rounding::Down), outward(hi, Rounding::Up)]")],
+     "a range of v0 a result holds for printed inward (table, note, CSV, JSON)",
+     ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
+
 ]
 
 

@@ -487,7 +487,9 @@ class RigorousResult:
     v0 : (n, 2) the enclosure of each impact speed (NaN for ``nd``).
     ts, e : (n, 2) the enclosures of T_s (nondimensional) and e (NaN where not proved).
     width_ts, width_e : upper bounds of the widths.
-    ts_text, e_text, v0_text : per case (lo, hi) decimals rounded outward, or None.
+    ts_text, e_text : per case (lo, hi) decimals rounded outward, or None.
+    v0_text : per case the (lo, hi) of the speeds the result holds for, rounded inward (the
+        printed range claims no speed the run did not cover), or None.
     width_ts_text, width_e_text : the widths as decimals rounded up, or None.
     ts_seconds : with ``physical``: (n, 2) an enclosure of T_s·T_c [s].
     params : (n, 6, 2) the enclosures of P = (B, Γ, κ, σ, n, p) of each case; for a classical
@@ -566,7 +568,8 @@ class RigorousResult:
     def to_pandas(self, floats: bool = False) -> Any:
         """One row per case (``set``, ``speed`` for a grid): the enclosures of v0, T_s and e as
         ``*_lo``/``*_hi`` and their widths, [the derived outputs' enclosures,] status,
-        separated, bits, reason and the enclosures of the parameters. By default the bounds are the outward decimals (text: each reads
+        separated, bits, reason and the enclosures of the parameters. By default the bounds are
+        the outward decimals (v0's inward: the speeds the result holds for; text: each reads
         back to its double, ``df.e_lo.astype(float)``), so that printing the frame prints
         bounds; ``floats=True`` gives float64 columns (pandas displays those rounded to
         nearest). Needs pandas."""
@@ -582,6 +585,9 @@ class RigorousResult:
             if floats:
                 a = np.asarray(b, dtype=float).reshape(-1, 2)
                 cols[f"{name}_lo"], cols[f"{name}_hi"] = a[:, 0], a[:, 1]
+            elif name == "v0":
+                # the speeds the result holds for: inward
+                cols["v0_lo"], cols["v0_hi"] = _frames.inward_pairs(b)
             else:
                 cols[f"{name}_lo"], cols[f"{name}_hi"] = _frames.outward_pairs(b)
         for name in ("ts", "e"):

@@ -144,6 +144,13 @@ def bracket(lo: float, hi: float) -> str:
     return f"[{outward(lo, False)}, {outward(hi, True)}]"
 
 
+def inward_pairs(lohi: Any) -> tuple:
+    """(lo, hi) columns of an (…, 2) array of a range a result is claimed for (v0 given as
+    a..b), rounded inward: each decimal still reads back to its double."""
+    a = np.asarray(lohi, dtype=float).reshape(-1, 2)
+    return ([outward(v, True) for v in a[:, 0]], [outward(v, False) for v in a[:, 1]])
+
+
 def outward_pairs(lohi: Any, digits: Optional[int] = None) -> tuple:
     """(lo, hi) columns of an (…, 2) array of bounds as outward decimals."""
     a = np.asarray(lohi, dtype=float).reshape(-1, 2)

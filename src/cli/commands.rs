@@ -116,11 +116,8 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
                 .filter_map(|r| {
                     let g = r.range.as_ref()?;
                     let v0 = r.v0.map_or(String::new(), |[l, h]| {
-                        format!(
-                            " for v0 in [{}, {}]",
-                            output::outward(l, bwcl::observables::decimal::Rounding::Down),
-                            output::outward(h, bwcl::observables::decimal::Rounding::Up)
-                        )
+                        let [a, b] = output::inner_pair(l, h);
+                        format!(" for v0 in [{a}, {b}]")
                     });
                     Some(format!("bwcl: note{v0}: {}", g.note))
                 })

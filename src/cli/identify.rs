@@ -133,6 +133,21 @@ fn range_text(a: f64, b: f64, inner: bool) -> String {
     format!("{}..{}", outward(a, d0), outward(b, d1))
 }
 
+/// A share as a percentage with two decimals, rounded up (`up`) or down exactly.
+fn percent(v: f64, up: bool) -> String {
+    let Some(r) = rug::Rational::from_f64(v) else {
+        return format!("{v} %");
+    };
+    let r = r * 10_000u32;
+    let (q, _) = if up {
+        r.ceil().into_numer_denom()
+    } else {
+        r.floor().into_numer_denom()
+    };
+    let (whole, frac) = q.div_rem_floor(rug::Integer::from(100));
+    format!("{whole}.{frac:02} %")
+}
+
 /// The verdict line.
 fn verdict(p: &Paving, d: &Done) -> String {
     let free = &d.free;
@@ -370,7 +385,10 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
                 ("undecided", nu, su),
             ]
             .iter()
-            .map(|(n, c, v)| vec![n.to_string(), c.to_string(), format!("{:.2} %", 100.0 * v)])
+            .map(|(n, c, v)| {
+                // the undecided share rounded up, the proved ones down
+                vec![n.to_string(), c.to_string(), percent(*v, *n == "undecided")]
+            })
             .collect();
             s.push_str(&output::table(
                 &["boxes", "count", "share of the box"],
@@ -448,8 +466,8 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
         None => Ok(EXIT_OK),
         Some(r) => {
             note(&format!(
-                "bwcl: identify: {r}: {:.2} % of the box is undecided (what is reported is proved)",
-                100.0 * su
+                "bwcl: identify: {r}: {} of the box is undecided (what is reported is proved)",
+                percent(su, true)
             ));
             Ok(EXIT_FAILED)
         }

@@ -172,8 +172,9 @@ impl FloatRow {
 #[derive(Serialize, Clone, Debug)]
 pub struct RigorousRow {
     pub model: &'static str,
-    /// The enclosure of the impact speed (a range for a..b); None for --nd.
-    #[serde(serialize_with = "json_pair")]
+    /// The impact speeds the result holds for: the enclosure of v0 as written (a range for a..b),
+    /// its ends rounded inward ([`inner_pair`]); None for --nd.
+    #[serde(serialize_with = "json_inner")]
     pub v0: Option<[f64; 2]>,
     pub proved: bool,
     /// Proved: the separation happens (T_s is finite and in `ts`).
@@ -407,6 +408,13 @@ pub fn outward(x: f64, dir: Rounding) -> String {
     decimal::outward(x, dir)
 }
 
+/// The ends of a range a result is claimed for (a range of v0 given as a..b), rounded inward:
+/// the lower end up, the upper down, each still reading back to its double — the printed range
+/// claims no speed the run did not cover.
+pub fn inner_pair(lo: f64, hi: f64) -> [String; 2] {
+    [outward(lo, Rounding::Up), outward(hi, Rounding::Down)]
+}
+
 /// The cells of an enclosure in a CSV: lower bound rounded down, upper bound up.
 pub fn outward_pair(i: Interval) -> [String; 2] {
     [
@@ -597,7 +605,7 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
             let up = |w: Option<f64>| w.map(|w| outward(w, Rounding::Up)).unwrap_or_default();
             let body = rows.iter().map(|r| {
                 let mut c = vec![r.model.to_string()];
-                c.extend(pair(r.v0));
+                c.extend(r.v0.map_or([String::new(), String::new()], |[l, h]| inner_pair(l, h)));
                 c.push(r.proved.to_string());
                 c.extend(pair(r.ts));
                 c.push(up(r.width_ts));
@@ -641,11 +649,8 @@ pub fn rigorous_cor(rows: &[RigorousRow], format: Format) -> Result<Vec<u8>, Cli
                         None => "-".to_string(),
                         Some([l, h]) if l == h => num(l),
                         Some([l, h]) => short_decimal_in(l, h).unwrap_or_else(|| {
-                            format!(
-                                "[{}, {}]",
-                                outward(l, Rounding::Down),
-                                outward(h, Rounding::Up)
-                            )
+                            let [a, b] = inner_pair(l, h);
+                            format!("[{a}, {b}]")
                         }),
                     };
                     let mut c = vec![r.model.to_string(), v0];

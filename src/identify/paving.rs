@@ -168,13 +168,23 @@ impl Paving {
 
     /// Share of the starting box's volume of each status (relative volumes, each side divided by
     /// the starting box's).
+    ///
+    /// Summed exactly (as rationals: the boxes' ends and the start's are doubles) and rounded
+    /// so that what is proved is not overstated: the feasible and infeasible shares down, the
+    /// undecided share up (0.25 exactly, where a sum in doubles gave 0.24999999999999986).
     pub fn shares(&self, start: &[Interval]) -> [f64; 3] {
-        let mut v = [0.0; 3];
+        use rug::float::Round;
+        let mut v: [rug::Rational; 3] = Default::default();
         for b in &self.boxes {
             let k = b.status as usize;
             v[k] += rel_volume(&b.lo, &b.hi, start);
         }
-        v
+        let round = |r: &rug::Rational, up: bool| {
+            rug::Float::with_val_round(53, r, if up { Round::Up } else { Round::Down })
+                .0
+                .to_f64()
+        };
+        [round(&v[0], false), round(&v[1], false), round(&v[2], true)]
     }
 }
 
@@ -209,18 +219,21 @@ fn volume(u: &[Interval], start: &[Interval]) -> f64 {
         .product()
 }
 
-fn rel_volume(lo: &[f64], hi: &[f64], start: &[Interval]) -> f64 {
+/// The box's volume relative to the start box, exactly.
+fn rel_volume(lo: &[f64], hi: &[f64], start: &[Interval]) -> rug::Rational {
+    let q = |x: f64| rug::Rational::from_f64(x).unwrap_or_default();
     lo.iter()
         .zip(hi)
         .zip(start)
-        .map(|((a, b), s)| {
-            if s.wid() > 0.0 {
-                (b - a) / s.wid()
+        .map(|((&a, &b), s)| {
+            let w = q(s.sup()) - q(s.inf());
+            if w > 0 {
+                (q(b) - q(a)) / w
             } else {
-                1.0
+                rug::Rational::from(1)
             }
         })
-        .product()
+        .fold(rug::Rational::from(1), |acc, x| acc * x)
 }
 
 /// One open row of a box: which of its observables are still open, and its slopes.
@@ -914,7 +927,7 @@ pub fn pave(
             undecided += leaves
                 .iter()
                 .filter(|l| l.status == Status::Undecided)
-                .map(|l| rel_volume(&l.lo, &l.hi, start))
+                .map(|l| rel_volume(&l.lo, &l.hi, start).to_f64())
                 .sum::<f64>();
             f(Progress {
                 processed,

@@ -7,7 +7,6 @@ use super::arrays::{put_bool, put_f64, put_f64_2d};
 use super::cli::args::CorArgs;
 use super::cli::input::Case;
 use super::cli::precise::texts;
-use super::rigorous::pair_text;
 use super::run::{compute_rows, py_error};
 
 use bwcl::observables::precision::{
@@ -106,7 +105,7 @@ pub fn cor_digits<'py>(
     put_f64_2d(&out, "params", params, 12)?;
     let v0_text: Vec<Option<(String, String)>> = v0s
         .iter()
-        .map(|v| pair_text(v.map(|x| [x.inf(), x.sup()])))
+        .map(|v| super::rigorous::v0_text(v.map(|x| [x.inf(), x.sup()])))
         .collect();
     out.set_item("v0_text", v0_text)?;
     let text = |f: &dyn Fn(&PreciseEnclosure) -> &[Rational; 2]| {

@@ -7,7 +7,7 @@ use super::cli::args::CorArgs;
 use super::cli::commands::rigorous_row;
 use super::cli::input;
 use super::cli::law_runs;
-use super::cli::output::{RigorousRow, derived_columns};
+use super::cli::output::{RigorousRow, derived_columns, inner_pair};
 use super::cor::{cor_args, per_list, put_params};
 use super::run::{compute_rows_progress, py_error};
 use bwcl::engines::taylor::TaylorOptions;
@@ -25,6 +25,11 @@ fn pair(b: Option<[f64; 2]>) -> [f64; 2] {
 /// The bounds as decimals rounded outward (lower down, upper up), as in the CLI's output.
 pub(super) fn pair_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
     b.map(|[lo, hi]| (outward(lo, Rounding::Down), outward(hi, Rounding::Up)))
+}
+
+/// The decimals of a range of v0 the result holds for, rounded inward ([`inner_pair`]).
+pub(super) fn v0_text(b: Option<[f64; 2]>) -> Option<(String, String)> {
+    b.map(|[lo, hi]| inner_pair(lo, hi).into())
 }
 
 /// Enclosures of T_s and e of every case (see `bwcl.cor_rigorous`): a dict of arrays and
@@ -118,7 +123,10 @@ fn rows_dict<'py>(
     let text = |f: &dyn Fn(&RigorousRow) -> Option<[f64; 2]>| {
         rows.iter().map(|r| pair_text(f(r))).collect::<Vec<_>>()
     };
-    d.set_item("v0_text", text(&|r| r.v0))?;
+    d.set_item(
+        "v0_text",
+        rows.iter().map(|r| v0_text(r.v0)).collect::<Vec<_>>(),
+    )?;
     d.set_item("ts_text", text(&|r| r.ts))?;
     d.set_item("e_text", text(&|r| r.e))?;
     let up = |w: Option<f64>| w.map(|w| outward(w, Rounding::Up));

@@ -57,6 +57,28 @@ def test_decimals_are_outward_and_read_back():
         assert Fraction(q.width_e_text[i]) >= Fraction(q.e[i, 1]) - Fraction(q.e[i, 0])
 
 
+def test_a_range_of_v0_is_printed_inward():
+    """The result holds for every speed of a range: its decimals (v0_text, to_pandas) lie
+    inside the doubles they read back to; the enclosures' outside."""
+    pytest.importorskip("pandas")
+    q = bwcl.cor_rigorous("shc", base=DSS, v0=[(0.3, 0.31)])
+    assert q.proved[0]
+    lo, hi = q.v0_text[0]
+    assert float(lo) == q.v0[0, 0] and float(hi) == q.v0[0, 1]
+    assert Fraction(lo) >= Fraction(q.v0[0, 0]) and Fraction(hi) <= Fraction(q.v0[0, 1])
+    assert Fraction(hi) != Fraction(q.v0[0, 1])  # (0.31000000000000005: rounded down)
+    df = q.to_pandas()
+    assert (df.v0_lo[0], df.v0_hi[0]) == (lo, hi)
+    assert Fraction(df.e_lo[0]) <= Fraction(q.e[0, 0])
+
+
+def test_digits_report_no_separation_as_proved():
+    """``digits``: no separation before the horizon is proved there too (as without digits)."""
+    r = bwcl.cor_rigorous("maxwell", nd=[1, 0, 0.5, 100, 1.5, 2], digits=20, horizon=5.0)
+    assert r.status == ("proved",) and r.proved.all() and not r.separated.any()
+    assert "no separation before the horizon T = 5" in r.reason[0]
+
+
 def test_numbers_strings_and_doubles():
     """A float is enclosed as its repr: the same enclosure as the string; the enclosure of
     the decimal holds the double too (the f64 case at that double is inside, to f64 error)."""
