@@ -1547,4 +1547,24 @@ fn a_range_of_v0_is_printed_inward() {
         .0;
     let (lo, hi) = v.split_once(',').unwrap();
     inward(lo.trim(), hi.trim());
+    // a single double whose shortest decimal is not itself: printed exactly at both ends (its
+    // inward ends would cross: 1.0000000000000003, 1.0000000000000002)
+    let x = "1.0000000000000002220446049250313080847263336181640625";
+    for v0 in [x.to_string(), format!("{x}..{x}")] {
+        let o = bwcl(&[
+            "cor",
+            "--model",
+            "shc",
+            "--base",
+            DSS,
+            "--v0",
+            &v0,
+            "--rigorous",
+            "--format",
+            "csv",
+        ]);
+        let out = stdout(&o);
+        let row: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!((row[1], row[2]), (x, x), "{out}");
+    }
 }

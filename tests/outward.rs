@@ -232,6 +232,10 @@ fn check_speeds(what: &str, lo: &str, hi: &str, i: Interval) {
     let t = Tight::ReadsBack;
     check_bound(&format!("{what} lo"), lo, i.inf(), Rounding::Up, t);
     check_bound(&format!("{what} hi"), hi, i.sup(), Rounding::Down, t);
+    assert!(
+        parse_rational(lo) <= parse_rational(hi),
+        "{what}: [{lo}, {hi}] crossed"
+    );
 }
 
 /// A printed width is ≥ the exact width of the library's enclosure (and no looser than the

@@ -484,7 +484,8 @@ GUARDS = [
      "the physical decimals checked exactly (β > 0, γ ∈ (−β, β), c > 0)",
      ["--test", "verdicts", "physical_parameters"]),
     ("digits-f64-floor", "src/observables/precision.rs",
-     [("    let Ok((ts, e, pieces)) = f64_run else {", "    let Ok((ts, e, pieces)) = f64_run.and(Err(precise.clone())) else {")],
+     [("        Ok(r) => r,\n        // no separation before the horizon, proved by the f64-interval engine",
+       "        Ok(_) => return Err(precise),\n        // no separation before the horizon, proved by the f64-interval engine")],
      "--digits never proves less than the f64-interval engine",
      ["--lib", "digits_fall_back"]),
     ("div-zero-dividend", "src/arith/interval/ulp.rs",
@@ -598,6 +599,11 @@ GUARDS = [
     ("v0-range-inward", "src/cli/output.rs",
      [("    [outward(lo, Rounding::Up), outward(hi, Rounding::Down)]", "    [outward(lo, Rounding::Down), outward(hi, Rounding::Up)]")],
      "a range of v0 a result holds for printed inward (table, note, CSV, JSON)",
+     ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
+
+    ("v0-point-exact", "src/cli/output.rs",
+     [("    if lo == hi {\n        // a single double", "    if lo == hi && false {\n        // a single double")],
+     "a single double v0 printed exactly (its inward ends would cross)",
      ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
 
 ]

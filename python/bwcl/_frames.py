@@ -146,9 +146,19 @@ def bracket(lo: float, hi: float) -> str:
 
 def inward_pairs(lohi: Any) -> tuple:
     """(lo, hi) columns of an (…, 2) array of a range a result is claimed for (v0 given as
-    a..b), rounded inward: each decimal still reads back to its double."""
+    a..b), rounded inward: each decimal still reads back to its double; a single double
+    (lo == hi) as its exact decimal (its inward ends would cross)."""
+    from decimal import Decimal
+
     a = np.asarray(lohi, dtype=float).reshape(-1, 2)
-    return ([outward(v, True) for v in a[:, 0]], [outward(v, False) for v in a[:, 1]])
+
+    def end(lo: float, hi: float, up: bool) -> str:
+        x = lo if up else hi
+        if lo == hi and np.isfinite(x):
+            return format(Decimal(x), "f") if abs(Decimal(x).adjusted()) < 16 else str(Decimal(x))
+        return outward(x, up)
+
+    return ([end(lo, hi, True) for lo, hi in a], [end(lo, hi, False) for lo, hi in a])
 
 
 def outward_pairs(lohi: Any, digits: Optional[int] = None) -> tuple:

@@ -15,6 +15,7 @@ import json
 import os
 import tempfile
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -61,7 +62,8 @@ class IdentifyResult:
     def __repr__(self) -> str:
         from ._frames import outward
 
-        shares = ", ".join(f"{k} {100 * v:.1f} %" for k, v in self.shares.items())
+        # the undecided share rounded up, the proved ones down
+        shares = ", ".join(f"{k} {_percent(v, k == 'undecided')}" for k, v in self.shares.items())
         if self.hull is None:
             hull = "F proved empty (the model is falsified at these errors)"
         else:
@@ -92,6 +94,24 @@ class IdentifyResult:
                 cols[f"{name}_hi"] = [outward(v, not p) for v, p in zip(b, proved)]
         cols["status"] = list(self.status)
         return pd.DataFrame(cols)
+
+
+def _directed(x: Fraction, up: bool) -> float:
+    """The exact rational x as a float rounded up (``up``) or down."""
+    f = float(x)
+    if up and Fraction(f) < x:
+        f = float(np.nextafter(f, np.inf))
+    elif not up and Fraction(f) > x:
+        f = float(np.nextafter(f, -np.inf))
+    return f
+
+
+def _percent(v: float, up: bool) -> str:
+    """A share as a percentage with one decimal, rounded up (``up``) or down exactly."""
+    from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
+
+    d = (Decimal(v) * 100).quantize(Decimal("0.1"), rounding=ROUND_CEILING if up else ROUND_FLOOR)
+    return f"{d} %"
 
 
 def _spec(v: Any, what: str, pair: bool) -> str:
@@ -295,12 +315,17 @@ def merge(parts: Sequence[IdentifyResult], bounds: Mapping[str, Tuple[float, flo
                 for j, n in enumerate(first.free)}
 
     counts = {s: sum(p.counts[s] for p in parts) for s in _STATUS}
-    vol = {n: float(b) - float(a) for n, (a, b) in bounds.items()}
-    shares = {s: 0.0 for s in _STATUS}
+    # the shares summed exactly (the parts' own shares are already rounded: proved down,
+    # undecided up) and rounded the same way
+    vol = {n: Fraction(float(b)) - Fraction(float(a)) for n, (a, b) in bounds.items()}
+    exact = {s: Fraction(0) for s in _STATUS}
     for p in parts:
-        w = np.prod([(p.box[n][1] - p.box[n][0]) / vol[n] for n in first.free])
+        w = Fraction(1)
+        for n in first.free:
+            w *= (Fraction(p.box[n][1]) - Fraction(p.box[n][0])) / vol[n]
         for s in _STATUS:
-            shares[s] += w * p.shares[s]
+            exact[s] += w * Fraction(p.shares[s])
+    shares = {s: _directed(exact[s], s == "undecided") for s in _STATUS}
     h = hull(("feasible", "undecided"))
     # (no decimals here: the hull's floats are the paving's own box ends, exact as floats)
     verdict = ("proved: no P* in the box is consistent with the data (F is empty)" if h is None

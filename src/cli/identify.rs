@@ -66,7 +66,7 @@ struct Shares {
 struct IdentifyOut<'a> {
     model: &'static str,
     free: Vec<&'static str>,
-    /// The starting box (outward), per free parameter.
+    /// The starting box (rounded inward: the box the claims are about), per free parameter.
     #[serde(rename = "box")]
     start: BTreeMap<&'static str, [Box<RawValue>; 2]>,
     rows: usize,

@@ -412,6 +412,12 @@ pub fn outward(x: f64, dir: Rounding) -> String {
 /// the lower end up, the upper down, each still reading back to its double — the printed range
 /// claims no speed the run did not cover.
 pub fn inner_pair(lo: f64, hi: f64) -> [String; 2] {
+    if lo == hi {
+        // a single double: its exact decimal (the two inward ends of 1.0000000000000002 would
+        // cross: 1.0000000000000003, 1.0000000000000002)
+        let x = decimal::exact(lo);
+        return [x.clone(), x];
+    }
     [outward(lo, Rounding::Up), outward(hi, Rounding::Down)]
 }
 

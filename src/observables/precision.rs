@@ -231,8 +231,11 @@ pub fn rigorous_impact_digits_or_f64(
             rigorous_impact(&Maxwell::new(params), base).map(|r| (r.ts, r.e, r.flow.len()))
         }
     };
-    let Ok((ts, e, pieces)) = f64_run else {
-        return Err(precise);
+    let (ts, e, pieces) = match f64_run {
+        Ok(r) => r,
+        // no separation before the horizon, proved by the f64-interval engine: a result
+        Err(e) if e.no_separation() => return Err(e),
+        Err(_) => return Err(precise),
     };
     let ends = |x: inari::Interval| -> Option<[Rational; 2]> {
         Some([Rational::from_f64(x.inf())?, Rational::from_f64(x.sup())?])

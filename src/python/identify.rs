@@ -1,5 +1,6 @@
 //! `bwcl.identify`: proved feasible sets of P* (set-membership identification), the paving as
-//! the JSON report of `bwcl identify --format json` (every box end rounded outward), with the
+//! the JSON report of `bwcl identify --format json` (box ends rounded outward or, for a set a
+//! claim is made on, inward), with the
 //! GIL released and the boxes in parallel.
 
 use super::cli::args::Command;

@@ -110,6 +110,17 @@ def test_dask_split_and_merge_covers_the_box(tmp_path):
     assert merged.hull is not None and whole.hull is not None
     assert merged.hull["sigma_b"][0] <= 0.00715 <= merged.hull["sigma_b"][1]
     assert abs(sum(merged.shares.values()) - 1.0) < 1e-9
+    # the merged shares against the boxes' exact lengths: the undecided one not understated,
+    # the proved ones not overstated (summed in floats they could be either)
+    from fractions import Fraction
+
+    total = Fraction(merged.box["sigma_b"][1]) - Fraction(merged.box["sigma_b"][0])
+    for s in ("feasible", "infeasible", "undecided"):
+        x = sum((Fraction(b) - Fraction(a) for a, b, t in
+                 zip(merged.lo[:, 0], merged.hi[:, 0], merged.status) if t == s), Fraction(0))
+        share = Fraction(merged.shares[s])
+        assert share >= x / total if s == "undecided" else share <= x / total, (s, share)
+    assert "undecided" in repr(merged)
     # the same resolution everywhere: the hulls agree to within one finest box
     w = (0.02 - 0.003) / 16
     assert abs(merged.hull["sigma_b"][1] - whole.hull["sigma_b"][1]) <= w
