@@ -1196,6 +1196,20 @@ fn bad_values_are_named_as_written() {
             ]),
             "--physical at v0 = 1: the nondimensional B = inf is beyond the range of the arithmetic",
         ),
+        // an end −0 of a range in a message is shown as 0
+        (
+            assert_bad_input(&[
+                "cor",
+                "--model",
+                "shc",
+                "--physical",
+                "m=1,k=1e6,c=1e-320,n=1.5,p=1.5,alpha=0.5,beta=1,gamma=0.5,A=1",
+                "--v0",
+                "1",
+                "--rigorous",
+            ]),
+            "the nondimensional σ = [0, 5e-324] is beyond the range",
+        ),
         (
             assert_bad_input(&["fit", "--model", "shc", "--data", data, "--error", "1e-999"]),
             "'1e-999' for '--error <E>': must be a finite number > 0 (this one is below",

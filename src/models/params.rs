@@ -106,7 +106,8 @@ pub fn show<R: Real>(x: &R) -> String {
     } else if (x.lo() > 0.0 || x.hi() < 0.0) && (x.hi() - x.lo()) <= 1e-12 * x.mid().abs() {
         short_f64(x.mid())
     } else {
-        format!("[{}, {}]", short_f64(x.lo()), short_f64(x.hi()))
+        // (an end −0 shown as 0: "[-0, 5e-324]" read as a negative value)
+        format!("[{}, {}]", short_f64(x.lo() + 0.0), short_f64(x.hi() + 0.0))
     }
 }
 
