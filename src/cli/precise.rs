@@ -23,13 +23,6 @@ struct Row {
     out: Outcome,
 }
 
-impl std::ops::Deref for Row {
-    type Target = Outcome;
-    fn deref(&self) -> &Outcome {
-        &self.out
-    }
-}
-
 /// What one case of `--digits` proved (the CLI's rows and the Python bindings' dict alike).
 pub struct Outcome {
     /// The enclosure, or the reason as text: why it was not proved, or (with `no_separation`)
@@ -182,7 +175,7 @@ pub fn cor(a: &CorArgs, digits: usize) -> Result<i32, CliError> {
     let elapsed = start.elapsed();
     let failed = rows
         .iter()
-        .filter(|r| r.res.is_err() && !r.no_separation)
+        .filter(|r| r.out.res.is_err() && !r.out.no_separation)
         .count();
     let bytes = render(kind, &rows, bits, a.format)?;
     let timing = || {
@@ -231,7 +224,7 @@ fn json_str(s: &str) -> String {
 fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Vec<u8>, CliError> {
     match format {
         Format::Table => {
-            let noted = rows.iter().any(|r| r.note.is_some());
+            let noted = rows.iter().any(|r| r.out.note.is_some());
             let mut head = vec![
                 "model", "v0", "ts", "width_ts", "e", "width_e", "bits", "pieces",
             ];
@@ -242,7 +235,7 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                 .iter()
                 .map(|r| {
                     let mut c = vec![kind.name().to_string(), r.v0.clone()];
-                    match &r.res {
+                    match &r.out.res {
                         Ok(p) => {
                             let [tl, th, tw, el, eh, ew] = cells(p);
                             c.extend([
@@ -254,7 +247,7 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                                 p.pieces.to_string(),
                             ]);
                             if noted {
-                                c.push(r.note.clone().unwrap_or_default());
+                                c.push(r.out.note.clone().unwrap_or_default());
                             }
                         }
                         Err(e) => c.push(e.clone()),
@@ -271,18 +264,18 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
             ];
             let body = rows.iter().map(|r| {
                 let mut c = vec![kind.name().to_string(), r.v0.clone()];
-                match &r.res {
+                match &r.out.res {
                     Ok(p) => {
                         c.push("true".into());
                         c.extend(cells(p));
                         c.extend([
                             p.bits.to_string(),
                             p.pieces.to_string(),
-                            r.note.clone().unwrap_or_default(),
+                            r.out.note.clone().unwrap_or_default(),
                         ]);
                     }
                     Err(e) => {
-                        c.push(r.no_separation.to_string());
+                        c.push(r.out.no_separation.to_string());
                         c.extend(std::iter::repeat_n(String::new(), 6));
                         c.extend([bits.to_string(), String::new(), e.clone()]);
                     }
@@ -301,15 +294,16 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                         json_str(&r.v0)
                     };
                     // the precision that proved the case (53: the f64-interval engine's proof)
-                    let b = r.res.as_ref().map_or(bits, |p| p.bits);
+                    let b = r.out.res.as_ref().map_or(bits, |p| p.bits);
                     let common = format!(
                         "\"model\": {}, \"v0\": {v0}, \"bits\": {b}",
                         json_str(kind.name())
                     );
-                    match &r.res {
+                    match &r.out.res {
                         Ok(p) => {
                             let [tl, th, tw, el, eh, ew] = cells(p);
                             let note = r
+                                .out
                                 .note
                                 .as_ref()
                                 .map(|n| format!(", \"note\": {}", json_str(n)))
@@ -319,7 +313,7 @@ fn render(kind: ModelKind, rows: &[Row], bits: u32, format: Format) -> Result<Ve
                                 p.pieces
                             )
                         }
-                        Err(e) if r.no_separation => format!(
+                        Err(e) if r.out.no_separation => format!(
                             "  {{{common}, \"proved\": true, \"separated\": false, \"reason\": {}}}",
                             json_str(e)
                         ),

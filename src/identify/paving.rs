@@ -207,15 +207,16 @@ fn hull_of<'a>(mut it: impl Iterator<Item = &'a Leaf>) -> Option<Vec<(f64, f64)>
 
 /// The volume of a box relative to the starting box's.
 fn volume(u: &[Interval], start: &[Interval]) -> f64 {
-    u.iter()
+    volume_of(u.iter().map(|x| x.wid()), start)
+}
+
+/// The volume of a box of the side lengths `widths` relative to the starting box's (in doubles:
+/// for the queue's order and the progress display; the reported shares are exact,
+/// [`rel_volume`]).
+fn volume_of(widths: impl Iterator<Item = f64>, start: &[Interval]) -> f64 {
+    widths
         .zip(start)
-        .map(|(x, s)| {
-            if s.wid() > 0.0 {
-                x.wid() / s.wid()
-            } else {
-                1.0
-            }
-        })
+        .map(|(w, s)| if s.wid() > 0.0 { w / s.wid() } else { 1.0 })
         .product()
 }
 
@@ -927,7 +928,7 @@ pub fn pave(
             undecided += leaves
                 .iter()
                 .filter(|l| l.status == Status::Undecided)
-                .map(|l| rel_volume(&l.lo, &l.hi, start).to_f64())
+                .map(|l| volume_of(l.lo.iter().zip(&l.hi).map(|(a, b)| b - a), start))
                 .sum::<f64>();
             f(Progress {
                 processed,

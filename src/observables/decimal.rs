@@ -218,13 +218,8 @@ pub fn exact(x: f64) -> String {
     let Some(r) = Rational::from_f64(x) else {
         return format!("{x}");
     };
-    // the shortest digit count at which rounding down and up agree is the exact value
-    (17..)
-        .find_map(|d| {
-            let lo = directed_rational(&r, d, Rounding::Down);
-            (lo.to_rational() == r).then(|| lo.text())
-        })
-        .expect("a double is a finite decimal")
+    // rounded at 767 significant digits it is exact (Decimal drops the trailing zeros)
+    directed_rational(&r, 767, Rounding::Down).text()
 }
 
 /// An upper bound of the width hi − lo as a double (the difference rounded up, exactly): what a
