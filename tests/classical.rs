@@ -217,9 +217,10 @@ fn the_cli_prints_outward_bounds_that_hold_the_closed_form() {
     let mut lines = out.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "law,params,ts_lo,ts_hi,width_ts,e_lo,e_hi,width_e"
+        "law,params,ts_lo,ts_hi,width_ts,e_lo,e_hi,width_e,separated,reason"
     );
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!((row[8], row[9]), ("true", ""), "{row:?}");
     let r = |s: &str| bwcl::observables::decimal::parse_rational(s).unwrap();
     let (lo, hi) = bracket(&hertz_ts(1.5));
     assert!(r(row[2]) <= lo && hi <= r(row[3]), "{row:?}");

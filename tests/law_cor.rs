@@ -408,3 +408,86 @@ fn bad_law_input_is_one_line_and_exit_2() {
         assert!(o.stdout.is_empty(), "{a:?}");
     }
 }
+
+/// The linear Maxwell law with c̃ ≤ 1/2 never separates (its closed form, src/models/
+/// linear_maxwell.rs): `cor` and `classical` say so on both engines, exit 0, instead of the
+/// float run's separation at T ≈ 67.5 with e ≈ 2e-14 (F decayed to the rounding level and
+/// changed sign there) and the rigorous run's "not proved" (F's sign undecidable at T ≈ 38).
+/// Just above 1/2 the law is not claimed to stay in contact.
+#[test]
+fn linear_maxwell_below_a_half_never_separates() {
+    let text = |args: &[&str]| {
+        let o = bwcl(args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        String::from_utf8(o.stdout).unwrap()
+    };
+    for c in ["c=0.4", "c=0.5", "c=1e-3"] {
+        let r = text(&["cor", "--model", "linear-maxwell", "--nd", c, "--rigorous"]);
+        assert!(
+            r.contains("proved: the law never separates (c̃ ≤ 1/2"),
+            "{c}: {r}"
+        );
+        assert!(r.contains("T_s = +∞, e = 0"), "{r}");
+        let f = rows(&[
+            "cor",
+            "--model",
+            "linear-maxwell",
+            "--nd",
+            c,
+            "--format",
+            "csv",
+        ]);
+        assert_eq!(
+            (f[0]["separated"].as_str(), f[0]["e"].as_str()),
+            ("false", "0"),
+            "{c}"
+        );
+    }
+    for rigorous in [false, true] {
+        let mut args = vec!["classical", "--law", "linear-maxwell", "--c", "0.4"];
+        args.extend(["--format", "json"]);
+        if rigorous {
+            args.push("--rigorous");
+        }
+        let v: serde_json::Value = serde_json::from_str(&text(&args)).unwrap();
+        assert_eq!(v["separated"], false);
+        assert_eq!(v["never_separates"], true);
+        assert!(v["ts"].is_null());
+        let e = if rigorous {
+            v["e"][1].as_str().unwrap().parse().unwrap()
+        } else {
+            v["e"].as_f64().unwrap()
+        };
+        assert_eq!(e, 0.0);
+        assert!(v["reason"].as_str().unwrap().contains("never separates"));
+    }
+    // c̃ = 1/2 + 2⁻⁵³ (its decimal enclosure reaches above 1/2): T_s = π/ω ≈ 1.5e8 by the
+    // closed form, beyond the horizon; not claimed never to separate
+    let r = bwcl(&[
+        "cor",
+        "--model",
+        "linear-maxwell",
+        "--nd",
+        "c=0.50000000000000011",
+        "--rigorous",
+    ]);
+    let out = String::from_utf8(r.stdout).unwrap();
+    assert!(!out.contains("never separates"), "{out}");
+    // and a law that separates says so
+    let v: serde_json::Value = serde_json::from_str(&text(&[
+        "classical",
+        "--law",
+        "linear-maxwell",
+        "--c",
+        "0.6",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(v["separated"], true);
+    assert!(v["e"].as_f64().unwrap() > 0.0);
+}

@@ -606,6 +606,21 @@ GUARDS = [
      "a single double v0 printed exactly (its inward ends would cross)",
      ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
 
+    # the linear Maxwell law with c̃ ≤ 1/2 never separates (a closed form,
+    # src/models/linear_maxwell.rs)
+    ("never-separates-upper-end", "src/models/linear_maxwell.rs",
+     [("        (self.c.hi() <= 0.5)", "        (self.c.lo() <= 0.5)")],
+     "the closed form claimed only when every value of c̃ is ≤ 1/2 (the enclosure's upper end)",
+     ["--lib", "linear_maxwell"]),
+    ("never-separates-rigorous", "src/engines/taylor/mod.rs",
+     [("    if let Some(why) = model.never_separates() {", "    if let Some(why) = None::<&str> {")],
+     "the rigorous engine reports the closed form's no separation (not an undecidable F ≈ 0)",
+     ["--test", "law_cor", "linear_maxwell_below_a_half_never_separates"]),
+    ("never-separates-float", "src/observables/separation.rs",
+     [("        if never {\n            continue;\n        }\n", "")],
+     "the float engine does not report F's rounding-level sign change as a separation",
+     ["--test", "law_cor", "linear_maxwell_below_a_half_never_separates"]),
+
 ]
 
 

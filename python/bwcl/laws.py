@@ -152,7 +152,11 @@ class ClassicalResult:
     """T_s and e of a classical law, nondimensional. With ``rigorous`` the bounds are proved
     (lower rounded down, upper up) and ``ts``/``e`` are their midpoints; otherwise the f64
     engine's values, with lo = hi. ``proved`` is False (and ``reason`` says why) when the case
-    was not proved or not integrated."""
+    was not proved or not integrated. ``separated`` is False when the law does not separate
+    before the horizon H (``reason`` says so): then ts_lo = H and ts_hi = ∞ (T_s > H), and e is
+    0 by the paper's convention where T_s = +∞ — the float run's answer, or proved when the law
+    never separates (a closed form: linear Maxwell with c ≤ 1/2; ts_lo = ∞) — and NaN after a
+    proved T_s > H alone."""
 
     law: str
     params: Dict[str, str]
@@ -163,6 +167,7 @@ class ClassicalResult:
     e_lo: float
     e_hi: float
     reason: Optional[str] = None
+    separated: bool = True
 
     @property
     def ts(self) -> float:
@@ -173,7 +178,9 @@ class ClassicalResult:
         return 0.5 * (self.e_lo + self.e_hi)
 
     def __repr__(self) -> str:
-        if self.rigorous and self.proved:
+        if not self.separated:
+            values = self.reason
+        elif self.rigorous and self.proved:
             # proved bounds printed on their outer sides
             values = f"ts {_bounds(self.ts_lo, self.ts_hi)}, e {_bounds(self.e_lo, self.e_hi)}"
         elif self.proved:
@@ -219,6 +226,14 @@ def classical(
         nan = float("nan")
         return ClassicalResult(d["law"], d["params"], bool(rigorous), False, nan, nan, nan, nan,
                                d["error"])
+    if not d["separated"]:
+        inf, nan = float("inf"), float("nan")
+        never = bool(d["never_separates"])
+        e = d["e"]
+        e = float(e[0]) if isinstance(e, list) else (nan if e is None else float(e))
+        return ClassicalResult(d["law"], d["params"], bool(d["rigorous"]), True,
+                               inf if never else float(d["horizon"]), inf, e, e, d["reason"],
+                               separated=False)
     if d["rigorous"]:
         (tl, th), (el, eh) = d["ts"], d["e"]
         return ClassicalResult(d["law"], d["params"], True, True, float(tl), float(th),

@@ -98,20 +98,37 @@ fn check_options(a: &ClassicalArgs) -> Result<(), CliError> {
     }
 }
 
-/// One case's result: (T_s, e) as intervals (points for the f64 engine).
-type Result2 = Result<(Interval, Interval), String>;
+/// One case's result.
+enum Outcome {
+    /// (T_s, e) as intervals (points for the f64 engine).
+    Separated(Interval, Interval),
+    /// No separation before the horizon H (proved on the rigorous engine: T_s > H; e = 0 by
+    /// the paper's convention if it never separates), and the closed form's argument when the
+    /// law never separates at all.
+    NoSeparation(f64, Option<String>),
+}
+
+type Result2 = Result<Outcome, String>;
 
 fn run_rigorous<M: CollisionModel<Interval, N>, const N: usize>(m: &M) -> Result2 {
-    rigorous_impact(m, &TaylorOptions::default())
-        .map(|r| (r.ts, r.e))
-        .map_err(|e| e.reason)
+    let opts = TaylorOptions::default();
+    match rigorous_impact(m, &opts) {
+        Ok(r) => Ok(Outcome::Separated(r.ts, r.e)),
+        Err(e) if e.no_separation() => Ok(Outcome::NoSeparation(
+            opts.horizon,
+            e.never_separates().map(String::from),
+        )),
+        Err(e) => Err(e.reason),
+    }
 }
 
 fn run_float<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> Result2 {
     let r = impact(m, &FloatOptions::default()).map_err(|e| e.to_string())?;
-    let ts = r.ts.ok_or("no separation before the horizon")?;
     let p = |x: f64| Interval::try_from((x, x)).unwrap();
-    Ok((p(ts), p(r.e)))
+    Ok(match r.ts {
+        Some(ts) => Outcome::Separated(p(ts), p(r.e)),
+        None => Outcome::NoSeparation(r.horizon, m.never_separates().map(String::from)),
+    })
 }
 
 /// σ of `--formula` at `--e-star` (0 < e* < 1, enclosed as written): an enclosure for the
@@ -223,6 +240,25 @@ fn params(a: &ClassicalArgs) -> Vec<(&'static str, String)> {
     p
 }
 
+/// The parameters as `key=value` words.
+fn pars_text(pars: &[(&'static str, String)]) -> String {
+    let p: Vec<String> = pars.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    p.join(" ")
+}
+
+/// The CSV columns: the values, then whether the case separated and, when not, why.
+fn csv_head(rigorous: bool) -> Vec<&'static str> {
+    let mut h = if rigorous {
+        vec![
+            "law", "params", "ts_lo", "ts_hi", "width_ts", "e_lo", "e_hi", "width_e",
+        ]
+    } else {
+        vec!["law", "params", "ts", "e"]
+    };
+    h.extend(["separated", "reason"]);
+    h
+}
+
 pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
     super::input::out_path(a.out.as_deref())?;
     let (bytes, code) = report(a)?;
@@ -247,7 +283,49 @@ pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
             if a.rigorous { "proved" } else { "integrated" }
         )
         .into_bytes(),
-        (Ok((ts, e)), Format::Json) => {
+        (Ok(Outcome::NoSeparation(h, never)), f) => {
+            // as `bwcl cor`: the horizon rounded down where the run proved T_s > H
+            let text = if a.rigorous {
+                super::commands::no_separation_text(*h, never.as_deref())
+            } else if let Some(why) = never {
+                format!("the law never separates ({why}; closed form): e = 0")
+            } else {
+                format!(
+                    "no separation before the horizon T = {} (e = 0)",
+                    output::num(*h)
+                )
+            };
+            match f {
+                Format::Json => output::json(&json!({
+                    "law": law,
+                    "params": named,
+                    "rigorous": a.rigorous,
+                    "separated": false,
+                    "ts": null,
+                    // e = 0 by the paper's convention where T_s = +∞ (the float run, or a
+                    // closed form); after a proved T_s > H alone e is not known
+                    "e": match (a.rigorous, never) {
+                        (false, _) => json!(0.0),
+                        (true, Some(_)) => json!(["0", "0"]),
+                        (true, None) => json!(null),
+                    },
+                    "never_separates": never.is_some(),
+                    "horizon": h,
+                    "reason": text,
+                }))?,
+                Format::Csv => {
+                    let mut row = vec![law.to_string(), pars_text(&pars)];
+                    row.resize(if a.rigorous { 8 } else { 4 }, String::new());
+                    if !a.rigorous {
+                        row[3] = "0".into();
+                    }
+                    row.extend(["false".to_string(), text]);
+                    output::csv(&csv_head(a.rigorous), [row])?
+                }
+                _ => format!("{law} {}: {text}\n", pars_text(&pars)).into_bytes(),
+            }
+        }
+        (Ok(Outcome::Separated(ts, e)), Format::Json) => {
             let cell = |x: &Interval| -> serde_json::Value {
                 if a.rigorous {
                     json!(outward_pair(*x))
@@ -259,44 +337,43 @@ pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
                 "law": law,
                 "params": named,
                 "rigorous": a.rigorous,
+                "separated": true,
                 "ts": cell(ts),
                 "e": cell(e),
             }))?
         }
-        (Ok((ts, e)), f) => {
-            let p: Vec<String> = pars.iter().map(|(k, v)| format!("{k}={v}")).collect();
-            let (head, row): (Vec<&str>, Vec<String>) = if a.rigorous {
+        (Ok(Outcome::Separated(ts, e)), f) => {
+            let mut row: Vec<String> = if a.rigorous {
                 let [tl, th] = outward_pair(*ts);
                 let [el, eh] = outward_pair(*e);
-                (
-                    vec![
-                        "law", "params", "ts_lo", "ts_hi", "width_ts", "e_lo", "e_hi", "width_e",
-                    ],
-                    vec![
-                        law.into(),
-                        p.join(" "),
-                        tl,
-                        th,
-                        sci_up(width_up(ts.inf(), ts.sup()), 3),
-                        el,
-                        eh,
-                        sci_up(width_up(e.inf(), e.sup()), 3),
-                    ],
-                )
+                vec![
+                    law.into(),
+                    pars_text(&pars),
+                    tl,
+                    th,
+                    sci_up(width_up(ts.inf(), ts.sup()), 3),
+                    el,
+                    eh,
+                    sci_up(width_up(e.inf(), e.sup()), 3),
+                ]
             } else {
-                (
-                    vec!["law", "params", "ts", "e"],
-                    vec![
-                        law.into(),
-                        p.join(" "),
-                        output::num(ts.inf()),
-                        output::num(e.inf()),
-                    ],
-                )
+                vec![
+                    law.into(),
+                    pars_text(&pars),
+                    output::num(ts.inf()),
+                    output::num(e.inf()),
+                ]
             };
+            let mut head = csv_head(a.rigorous);
             match f {
-                Format::Csv => output::csv(&head, [row])?,
-                _ => output::table(&head, &[row]).into_bytes(),
+                Format::Csv => {
+                    row.extend(["true".to_string(), String::new()]);
+                    output::csv(&head, [row])?
+                }
+                _ => {
+                    head.truncate(row.len());
+                    output::table(&head, &[row]).into_bytes()
+                }
             }
         }
     };

@@ -325,7 +325,14 @@ pub fn settle_float(
 /// What a case without separation before the horizon proved: the condition fails on [0, H] for
 /// the double H, so its decimal is rounded down (2.9 is the double 2.89999999999999991…:
 /// "T_s > 2.9" would claim (H, 2.9] too).
-pub fn no_separation_text(horizon: f64) -> String {
+/// With `never` (the model's closed form, [`bwcl::engines::taylor::RigorError::never_separates`])
+/// the case never separates at all: T_s = +∞.
+pub fn no_separation_text(horizon: f64, never: Option<&str>) -> String {
+    if let Some(why) = never {
+        return format!(
+            "proved: the law never separates ({why}; closed form): T_s = +∞, e = 0 by the paper's convention"
+        );
+    }
     format!(
         "proved: no separation before the horizon T = {h} (T_s > {h}; e = 0 if it never separates, the paper's convention for T_s = +∞)",
         h = output::outward(horizon, bwcl::observables::decimal::Rounding::Down)
@@ -485,7 +492,7 @@ pub fn settle_rigorous(
         // the condition proved to fail on [0, horizon]: T_s > horizon, a result
         Err(err) if err.no_separation() => {
             row.proved = true;
-            row.reason = Some(no_separation_text(row.horizon));
+            row.reason = Some(no_separation_text(row.horizon, err.never_separates()));
         }
         Err(err) => row.reason = Some(input::limit_text(&err, time_limit)),
     }

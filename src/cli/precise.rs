@@ -61,7 +61,10 @@ pub fn outcome(
         },
         // the condition proved to fail on [0, horizon]: T_s > horizon, a result
         Err(e) if e.no_separation() => Outcome {
-            res: Err(super::commands::no_separation_text(opts.horizon)),
+            res: Err(super::commands::no_separation_text(
+                opts.horizon,
+                e.never_separates(),
+            )),
             no_separation: true,
             note: None,
         },

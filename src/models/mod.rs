@@ -50,6 +50,13 @@ pub trait CollisionModel<R: Real, const N: usize>: Clone + Send + Sync {
     fn position<T: Scalar<R>>(&self, s: &[T; N]) -> T;
     /// The relative velocity V (an output for the Maxwell model).
     fn velocity<T: Scalar<R>>(&self, s: &[T; N]) -> T;
+    /// Why the separation condition F ≤ 0 ∧ V ≥ 0 never holds (T_s = +∞), proved from a closed
+    /// form for every value of the parameters' enclosures; `None` where no such proof is known.
+    /// The engines then report no separation without integrating the condition, whose F can
+    /// decay to the rounding level (the linear Maxwell law with c̃ ≤ 1/2).
+    fn never_separates(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// A law whose contact force depends on the relative motion alone (no internal state): states

@@ -117,8 +117,14 @@ pub fn impact<M: CollisionModel<f64, N>, const N: usize>(
         opts.horizon,
         opts.ode.clone(),
     )?;
+    // proved never to separate (a closed form): integrated to the horizon without the
+    // condition, whose F would decay to the rounding level and change sign there
+    let never = model.never_separates().is_some();
     let mut g_prev = sign_g(model, solver.y());
     while solver.step()? {
+        if never {
+            continue;
+        }
         let g_end = sign_g(model, solver.y());
         // A step whose ends are both well away from the set (g > 2|Δg| at both ends) is not
         // sampled: for g to reach 0 inside it, its excursion from the chord would have to exceed

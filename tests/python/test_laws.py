@@ -238,3 +238,15 @@ def test_proved_reprs_print_bounds_outward():
         assert Decimal(lo) <= Decimal(a) and Decimal(hi) >= Decimal(b), (text, a, b)
     mx = text.split("max_abs_error ≤ ")[1].split(",")[0]
     assert Decimal(mx) >= Decimal(f.max_abs_error), text
+
+
+def test_classical_linear_maxwell_below_a_half_never_separates():
+    """c ≤ 1/2: the closed form says the law never separates (T_s = +∞, e = 0), on both
+    engines; above 1/2 it separates."""
+    for rigorous in (False, True):
+        r = bwcl.classical("linear-maxwell", c="0.4", rigorous=rigorous)
+        assert r.proved and not r.separated, r
+        assert r.ts_lo == math.inf and r.e_lo == r.e_hi == 0.0
+        assert "never separates" in r.reason and "never separates" in repr(r)
+    s = bwcl.classical("linear-maxwell", c="0.6", rigorous=True)
+    assert s.separated and 0 < s.e_lo <= s.e_hi < 1

@@ -43,8 +43,8 @@ pub use event::SeparationEvent;
 pub use flow::{Flow, Piece};
 pub use integrate::Ended;
 pub use options::{
-    CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError, SWITCH_ON_AN_EXPRESSION,
-    TaylorOptions, UNDECIDABLE,
+    AT_NO_TIME, CANNOT_CROSS, DEADLINE, GREW_TOO_WIDE, NO_SEPARATION, RigorError,
+    SWITCH_ON_AN_EXPRESSION, TaylorOptions, UNDECIDABLE,
 };
 
 use crate::arith::Enclosure;
@@ -82,6 +82,14 @@ fn integrate<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
     model: &M,
     opts: &TaylorOptions,
 ) -> Result<(Flow<N, I>, SeparationEvent<N, I>), RigorError> {
+    // proved from a closed form for all T: no separation before any horizon
+    if let Some(why) = model.never_separates() {
+        return Err(RigorError {
+            reason: format!("{NO_SEPARATION} T = {} ({AT_NO_TIME}: {why})", opts.horizon),
+            t: opts.horizon,
+            width: 0.0,
+        });
+    }
     let tape = Tape::<I, N>::record(|v| {
         let mut o = model.field(v).to_vec();
         o.push(model.force(v));

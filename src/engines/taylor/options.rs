@@ -115,6 +115,9 @@ pub const DEADLINE: &str = "the time budget ran out";
 /// The start of the reason of a run that reached its horizon with the separation condition
 /// proved to fail on all of [0, horizon]: a proved result (T_s > horizon), not a failure.
 pub const NO_SEPARATION: &str = "no separation before the horizon";
+/// In a [`NO_SEPARATION`] reason, before the closed form's argument that the model never
+/// separates ([`crate::models::CollisionModel::never_separates`]): T_s = +∞.
+pub const AT_NO_TIME: &str = "nor at any later time, by a closed form";
 
 impl TaylorOptions {
     /// Whether [`TaylorOptions::deadline`] has passed, or a stop is requested
@@ -147,6 +150,14 @@ impl RigorError {
     /// the horizon ([`NO_SEPARATION`]): T_s > T.
     pub fn no_separation(&self) -> bool {
         self.reason.starts_with(NO_SEPARATION)
+    }
+
+    /// For a [`NO_SEPARATION`] proved for every time by the model's closed form ([`AT_NO_TIME`]):
+    /// its argument (T_s = +∞).
+    pub fn never_separates(&self) -> Option<&str> {
+        let rest = self.reason.strip_prefix(NO_SEPARATION)?;
+        let (_, why) = rest.split_once(AT_NO_TIME)?;
+        Some(why.trim_start_matches(": ").trim_end_matches(')'))
     }
 }
 
