@@ -18,13 +18,7 @@ fn fl(x: &str) -> Float {
 
 /// The CSV rows of `cor` (header → value), exit code 0 asserted.
 fn rows(args: &[&str]) -> Vec<std::collections::HashMap<String, String>> {
-    let o = bwcl(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let out = String::from_utf8(o.stdout).unwrap();
+    let out = common::bwcl_ok(args);
     let mut lines = out.lines();
     let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     lines
@@ -416,15 +410,7 @@ fn bad_law_input_is_one_line_and_exit_2() {
 /// Just above 1/2 the law is not claimed to stay in contact.
 #[test]
 fn linear_maxwell_below_a_half_never_separates() {
-    let text = |args: &[&str]| {
-        let o = bwcl(args);
-        assert!(
-            o.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        String::from_utf8(o.stdout).unwrap()
-    };
+    let text = common::bwcl_ok;
     for c in ["c=0.4", "c=0.5", "c=1e-3"] {
         let r = text(&["cor", "--model", "linear-maxwell", "--nd", c, "--rigorous"]);
         assert!(

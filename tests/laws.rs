@@ -159,13 +159,7 @@ fn the_paving_proves_the_known_regimes() {
 }
 
 fn stdout(args: &[&str]) -> String {
-    let o = bwcl(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
+    common::bwcl_ok(args)
 }
 
 #[test]

@@ -602,7 +602,7 @@ GUARDS = [
      ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
 
     ("v0-point-exact", "src/cli/output.rs",
-     [("    if lo == hi {\n        // a single double", "    if lo == hi && false {\n        // a single double")],
+     [("    if lo == hi {\n        let x = decimal::exact(lo);", "    if lo == hi && false {\n        let x = decimal::exact(lo);")],
      "a single double v0 printed exactly (its inward ends would cross)",
      ["--test", "cli", "a_range_of_v0_is_printed_inward"]),
 

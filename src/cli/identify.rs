@@ -3,13 +3,12 @@
 
 use super::args::{IdentifyArgs, IdentifyFormat};
 use super::fit::read_data;
-use super::output::{self, outward};
+use super::output;
 use super::progress::Progress;
 use super::{CliError, EXIT_FAILED, EXIT_OK, note};
 use bwcl::identify::paving::{Leaf, Options, Paving, Status, pave};
 use bwcl::identify::sample::{Sampled, sample};
 use bwcl::identify::setup::{Spec, problem};
-use bwcl::observables::decimal::Rounding;
 use inari::Interval;
 use serde::Serialize;
 use serde_json::value::RawValue;
@@ -20,16 +19,19 @@ use std::fmt::Write as _;
 const SAMPLE_SEED: u64 = 31;
 
 /// A bound rounded outward as a JSON number (null when not finite).
-fn bound(x: f64, dir: Rounding) -> Box<RawValue> {
-    let mut t = if x.is_finite() {
-        outward(x, dir)
-    } else {
-        "null".into()
+/// A box side [a, b] as two JSON numbers, rounded as [`output::ends_text`] says (a side
+/// beyond the doubles as null).
+fn bounds(a: f64, b: f64, inner: bool) -> [Box<RawValue>; 2] {
+    let raw = |x: f64, mut t: String| {
+        if !x.is_finite() {
+            t = "null".into();
+        } else if !t.contains(['.', 'e']) {
+            t.push_str(".0");
+        }
+        RawValue::from_string(t).expect("a JSON number")
     };
-    if x.is_finite() && !t.contains(['.', 'e']) {
-        t.push_str(".0");
-    }
-    RawValue::from_string(t).expect("a JSON number")
+    let [ta, tb] = output::ends_text(a, b, inner);
+    [raw(a, ta), raw(b, tb)]
 }
 
 #[derive(Serialize)]
@@ -97,20 +99,11 @@ struct IdentifyOut<'a> {
     boxes: Vec<BoxOut>,
 }
 
-/// The directions of a box's ends: outward for an enclosure (the hull of what may be consistent,
-/// an undecided box), inward for a set a claim is made on (every point of a feasible box is
-/// consistent, of an infeasible one inconsistent; the search covered the start box; the
-/// feasible boxes reach the feasible hull's ends), so that a printed box claims no point the
-/// paving did not prove.
-fn ends(inner: bool) -> [Rounding; 2] {
-    if inner {
-        [Rounding::Up, Rounding::Down]
-    } else {
-        [Rounding::Down, Rounding::Up]
-    }
-}
-
-/// A box's ends are rounded inward unless it is undecided ([`ends`]).
+/// A box's ends are rounded inward unless it is undecided ([`output::ends_text`]): outward for
+/// an enclosure (the hull of what may be consistent, an undecided box), inward for a set a
+/// claim is made on (every point of a feasible box is consistent, of an infeasible one
+/// inconsistent; the search covered the start box; the feasible boxes reach the feasible
+/// hull's ends), so that a printed box claims no point the paving did not prove.
 fn inner(s: Status) -> bool {
     s != Status::Undecided
 }
@@ -120,17 +113,16 @@ fn named(
     h: &[(f64, f64)],
     inner: bool,
 ) -> BTreeMap<&'static str, [Box<RawValue>; 2]> {
-    let [d0, d1] = ends(inner);
     free.iter()
         .zip(h)
-        .map(|(n, &(a, b))| (*n, [bound(a, d0), bound(b, d1)]))
+        .map(|(n, &(a, b))| (*n, bounds(a, b, inner)))
         .collect()
 }
 
-/// "lo..hi" of a box's side, rounded as [`ends`] says.
+/// "lo..hi" of a box's side, rounded as [`output::ends_text`] says.
 fn range_text(a: f64, b: f64, inner: bool) -> String {
-    let [d0, d1] = ends(inner);
-    format!("{}..{}", outward(a, d0), outward(b, d1))
+    let [ta, tb] = output::ends_text(a, b, inner);
+    format!("{ta}..{tb}")
 }
 
 /// A share as a percentage with two decimals, rounded up (`up`) or down exactly.
@@ -179,11 +171,8 @@ fn verdict(p: &Paving, d: &Done) -> String {
                 .iter()
                 .zip(&h)
                 .map(|(n, &(a, b))| {
-                    format!(
-                        "{n} ∈ [{}, {}]",
-                        outward(a, Rounding::Down),
-                        outward(b, Rounding::Up)
-                    )
+                    let [ta, tb] = output::ends_text(a, b, false);
+                    format!("{n} ∈ [{ta}, {tb}]")
                 })
                 .collect();
             let feasible = if p.counts()[0] > 0 {
@@ -353,10 +342,8 @@ pub fn identify(a: &IdentifyArgs) -> Result<i32, CliError> {
             let head: Vec<&str> = head.iter().map(String::as_str).collect();
             let rows = paving.boxes.iter().map(|b| {
                 let mut r = vec![status_name(b.status).to_string()];
-                let [d0, d1] = ends(inner(b.status));
                 for (&lo, &hi) in b.lo.iter().zip(&b.hi) {
-                    r.push(outward(lo, d0));
-                    r.push(outward(hi, d1));
+                    r.extend(output::ends_text(lo, hi, inner(b.status)));
                 }
                 r
             });
@@ -503,10 +490,17 @@ fn status_name(s: Status) -> &'static str {
 }
 
 fn box_out(b: &Leaf) -> BoxOut {
-    let [d0, d1] = ends(inner(b.status));
+    let (lo, hi) =
+        b.lo.iter()
+            .zip(&b.hi)
+            .map(|(&a, &c)| {
+                let [x, y] = bounds(a, c, inner(b.status));
+                (x, y)
+            })
+            .unzip();
     BoxOut {
-        lo: b.lo.iter().map(|&x| bound(x, d0)).collect(),
-        hi: b.hi.iter().map(|&x| bound(x, d1)).collect(),
+        lo,
+        hi,
         status: b.status,
     }
 }

@@ -408,25 +408,32 @@ pub fn outward(x: f64, dir: Rounding) -> String {
     decimal::outward(x, dir)
 }
 
-/// The ends of a range a result is claimed for (a range of v0 given as a..b), rounded inward:
-/// the lower end up, the upper down, each still reading back to its double — the printed range
-/// claims no speed the run did not cover.
-pub fn inner_pair(lo: f64, hi: f64) -> [String; 2] {
+/// The ends of [lo, hi] as decimals: outward (the lower end rounded down, the upper up) for an
+/// enclosure of a result; `inner` (the lower end up, the upper down, each still reading back to
+/// its double) for a set a claim is made on — a range of v0 the result holds for, a feasible or
+/// infeasible box — so that the printed set claims no point the run did not cover. A single
+/// double printed inward is its exact decimal (the two inward ends of 1.0000000000000002 would
+/// cross: 1.0000000000000003, 1.0000000000000002).
+pub fn ends_text(lo: f64, hi: f64, inner: bool) -> [String; 2] {
+    if !inner {
+        return [outward(lo, Rounding::Down), outward(hi, Rounding::Up)];
+    }
     if lo == hi {
-        // a single double: its exact decimal (the two inward ends of 1.0000000000000002 would
-        // cross: 1.0000000000000003, 1.0000000000000002)
         let x = decimal::exact(lo);
         return [x.clone(), x];
     }
     [outward(lo, Rounding::Up), outward(hi, Rounding::Down)]
 }
 
+/// The ends of a range a result is claimed for (a range of v0 given as a..b), rounded inward
+/// ([`ends_text`]).
+pub fn inner_pair(lo: f64, hi: f64) -> [String; 2] {
+    ends_text(lo, hi, true)
+}
+
 /// The cells of an enclosure in a CSV: lower bound rounded down, upper bound up.
 pub fn outward_pair(i: Interval) -> [String; 2] {
-    [
-        outward(i.inf(), Rounding::Down),
-        outward(i.sup(), Rounding::Up),
-    ]
+    ends_text(i.inf(), i.sup(), false)
 }
 
 /// A double in the shortest form that reads back exactly: plain for ordinary magnitudes,

@@ -31,6 +31,17 @@ pub fn bwcl(args: &[&str]) -> Output {
         .expect("bwcl runs")
 }
 
+/// The standard output of `bwcl args`, its success asserted (stderr in the message).
+pub fn bwcl_ok(args: &[&str]) -> String {
+    let o = bwcl(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout).unwrap()
+}
+
 const BITS: u32 = 400;
 
 /// The bracket [lo, hi] of the Hunt–Crossley e(σ), exact rationals, for a rational σ > 0 (taken
