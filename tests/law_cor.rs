@@ -463,6 +463,23 @@ fn linear_maxwell_below_a_half_never_separates() {
     ]);
     let out = String::from_utf8(r.stdout).unwrap();
     assert!(!out.contains("never separates"), "{out}");
+    // the float run of that law "separates" at T ≈ 39 with e ≈ 1e-14 from rounding: said so
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "linear-maxwell",
+        "--nd",
+        "c=0.50000000000000011",
+    ]);
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(o.status.success());
+    assert!(
+        err.contains("is below the absolute tolerance 1e-12 of the float run"),
+        "{err}"
+    );
+    // and not where e is resolved (c̃ = 0.6: e ≈ 8.8e-3)
+    let o = bwcl(&["cor", "--model", "linear-maxwell", "--nd", "c=0.6"]);
+    assert!(o.status.success() && o.stderr.is_empty());
     // and a law that separates says so
     let v: serde_json::Value = serde_json::from_str(&text(&[
         "classical",

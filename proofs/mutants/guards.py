@@ -620,6 +620,10 @@ GUARDS = [
      [("        if never {\n            continue;\n        }\n", "")],
      "the float engine does not report F's rounding-level sign change as a separation",
      ["--test", "law_cor", "linear_maxwell_below_a_half_never_separates"]),
+    ("float-resolution-note", "src/cli/commands.rs",
+     [(".filter(|r| r.separated && r.e.is_some_and(|e| e.abs() < atol))", ".filter(|r| r.separated && r.e.is_some_and(|e| e.abs() < 0.0 * atol))")],
+     "a float separation with e below atol (at the run's rounding level) noted on stderr",
+     ["--test", "law_cor", "linear_maxwell_below_a_half_never_separates"]),
 
 ]
 

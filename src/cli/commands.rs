@@ -88,9 +88,11 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         return super::band::band(a, path);
     }
     input::out_path(a.out.as_deref())?;
-    let mut range_notes: Vec<String> = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
     let (bytes, failed, total, elapsed) = if let Some(law) = a.params.model.law() {
-        super::law_runs::cor(a, law)?
+        let (bytes, failed, total, elapsed, law_notes) = super::law_runs::cor(a, law)?;
+        notes = law_notes;
+        (bytes, failed, total, elapsed)
     } else if a.engine.rigorous {
         let kind = input::bouc_wen_only(a.params.model, "cor")?;
         let opts = input::taylor_options(&a.engine)?;
@@ -111,7 +113,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
         let failed = rows.iter().filter(|r| !r.proved).count();
         // how each range was split and how tight its hull is (in the JSON output as "range")
         if a.format == super::args::Format::Table {
-            range_notes = rows
+            notes = rows
                 .iter()
                 .filter_map(|r| {
                     let g = r.range.as_ref()?;
@@ -140,6 +142,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
             .collect();
         let elapsed = start.elapsed();
         let failed = rows.iter().filter(|r| r.error.is_some()).count();
+        notes = resolution_notes(&rows, opts.ode.atol);
         (
             output::float_cor(&rows, a.format)?,
             failed,
@@ -149,7 +152,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     };
     // notes only after the output is written: an error must stay the one stderr line
     let timing = || {
-        for n in &range_notes {
+        for n in &notes {
             note(n);
         }
         if a.timing {
@@ -302,6 +305,41 @@ pub fn derived_missing(row: &mut RigorousRow, ranged: bool) {
         "computed on the f64-interval engine only, not by the precision fallback"
     }));
 }
+
+/// Notes for the float rows whose separation lies at the integrator's resolution: e = V(T_s)
+/// below the absolute tolerance, so that V and F are 0 to what the run resolves and rounding
+/// may have met the condition F ≤ 0 ∧ V ≥ 0 (the linear Maxwell law with c̃ = 1/2 + 2⁻⁵³
+/// "separated" at T ≈ 39 with e ≈ 1e-14; its T_s is π/ω ≈ 1.5e8).
+/// At most five such lines, then one that counts the rest.
+pub fn resolution_notes(rows: &[FloatRow], atol: f64) -> Vec<String> {
+    let low: Vec<&FloatRow> = rows
+        .iter()
+        .filter(|r| r.separated && r.e.is_some_and(|e| e.abs() < atol))
+        .collect();
+    let mut out: Vec<String> = low
+        .iter()
+        .take(MAX_NOTES)
+        .map(|r| {
+            let v0 = r.v0.map_or(String::new(), |v| format!(" (v0 = {})", num(v)));
+            format!(
+                "bwcl: note{v0}: e = {} is below the absolute tolerance {} of the float run: the separation at T = {} lies at its rounding level and may not be real (--rigorous proves or refutes it)",
+                num(r.e.unwrap_or(0.0)),
+                num(atol),
+                r.ts.map_or("-".into(), num)
+            )
+        })
+        .collect();
+    if low.len() > MAX_NOTES {
+        out.push(format!(
+            "bwcl: note: {} more case(s) with e below the absolute tolerance",
+            low.len() - MAX_NOTES
+        ));
+    }
+    out
+}
+
+/// The most notes of one kind written for a run's cases.
+const MAX_NOTES: usize = 5;
 
 /// A float row's result: T_s (in seconds too when the row has the time scale) and e, or why
 /// the integration failed.

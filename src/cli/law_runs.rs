@@ -118,11 +118,11 @@ pub fn rigorous_row(
     row
 }
 
-/// The rows of `cor` for a law, rendered: (output, cases failed, cases, compute time).
-pub fn cor(
-    a: &CorArgs,
-    law: Law,
-) -> Result<(Vec<u8>, usize, usize, std::time::Duration), CliError> {
+/// `cor`'s rows rendered: (output, cases failed, cases, compute time, notes for stderr).
+pub type Rendered = (Vec<u8>, usize, usize, std::time::Duration, Vec<String>);
+
+/// The rows of `cor` for a law, rendered.
+pub fn cor(a: &CorArgs, law: Law) -> Result<Rendered, CliError> {
     check_cor_options(a)?;
     if a.engine.rigorous {
         let opts = input::taylor_options(&a.engine)?;
@@ -136,6 +136,7 @@ pub fn cor(
             failed,
             rows.len(),
             elapsed,
+            Vec::new(),
         ))
     } else {
         let opts = input::float_options(&a.engine)?;
@@ -152,6 +153,7 @@ pub fn cor(
             failed,
             rows.len(),
             elapsed,
+            super::commands::resolution_notes(&rows, opts.ode.atol),
         ))
     }
 }
