@@ -477,6 +477,18 @@ fn linear_maxwell_below_a_half_never_separates() {
         err.contains("is below the absolute tolerance 1e-12 of the float run"),
         "{err}"
     );
+    let o = bwcl(&[
+        "classical",
+        "--law",
+        "linear-maxwell",
+        "--c",
+        "0.50000000000000011",
+    ]);
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(
+        o.status.success() && err.contains("below the absolute tolerance"),
+        "{err}"
+    );
     // and not where e is resolved (c̃ = 0.6: e ≈ 8.8e-3)
     let o = bwcl(&["cor", "--model", "linear-maxwell", "--nd", "c=0.6"]);
     assert!(o.status.success() && o.stderr.is_empty());

@@ -261,16 +261,32 @@ fn csv_head(rigorous: bool) -> Vec<&'static str> {
 
 pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
     super::input::out_path(a.out.as_deref())?;
-    let (bytes, code) = report(a)?;
+    let (bytes, code, note) = report_and_note(a)?;
     output::emit(a.out.as_deref(), &bytes)?;
+    if let Some(n) = note {
+        super::note(&n);
+    }
     Ok(code)
 }
 
 /// The output of `bwcl classical` and its exit code (1 when the case was not proved or not
 /// integrated).
 pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
+    report_and_note(a).map(|(bytes, code, _)| (bytes, code))
+}
+
+/// [`report`], and as `bwcl cor` a note for stderr where the float run's separation has e below
+/// its absolute tolerance ([`super::commands::resolution_note`]).
+fn report_and_note(a: &ClassicalArgs) -> Result<(Vec<u8>, i32, Option<String>), CliError> {
     check_options(a)?;
     let result = compute(a)?;
+    let atol = FloatOptions::default().ode.atol;
+    let note = match &result {
+        Ok(Outcome::Separated(ts, e)) if !a.rigorous && e.inf().abs() < atol => Some(
+            super::commands::resolution_note(None, e.inf(), Some(ts.inf()), atol),
+        ),
+        _ => None,
+    };
     let law = name(a.law);
     let pars = params(a);
     let named: std::collections::BTreeMap<_, _> = pars.iter().cloned().collect();
@@ -381,5 +397,5 @@ pub fn report(a: &ClassicalArgs) -> Result<(Vec<u8>, i32), CliError> {
         Ok(_) => super::EXIT_OK,
         Err(_) => super::EXIT_FAILED,
     };
-    Ok((bytes, code))
+    Ok((bytes, code, note))
 }

@@ -319,15 +319,7 @@ pub fn resolution_notes(rows: &[FloatRow], atol: f64) -> Vec<String> {
     let mut out: Vec<String> = low
         .iter()
         .take(MAX_NOTES)
-        .map(|r| {
-            let v0 = r.v0.map_or(String::new(), |v| format!(" (v0 = {})", num(v)));
-            format!(
-                "bwcl: note{v0}: e = {} is below the absolute tolerance {} of the float run: the separation at T = {} lies at its rounding level and may not be real (--rigorous proves or refutes it)",
-                num(r.e.unwrap_or(0.0)),
-                num(atol),
-                r.ts.map_or("-".into(), num)
-            )
-        })
+        .map(|r| resolution_note(r.v0, r.e.unwrap_or(0.0), r.ts, atol))
         .collect();
     if low.len() > MAX_NOTES {
         out.push(format!(
@@ -336,6 +328,17 @@ pub fn resolution_notes(rows: &[FloatRow], atol: f64) -> Vec<String> {
         ));
     }
     out
+}
+
+/// The note of [`resolution_notes`] for one case (`v0` when the case has one).
+pub fn resolution_note(v0: Option<f64>, e: f64, ts: Option<f64>, atol: f64) -> String {
+    let v0 = v0.map_or(String::new(), |v| format!(" (v0 = {})", num(v)));
+    format!(
+        "bwcl: note{v0}: e = {} is below the absolute tolerance {} of the float run: the separation at T = {} lies at its rounding level and may not be real (--rigorous proves or refutes it)",
+        num(e),
+        num(atol),
+        ts.map_or("-".into(), num)
+    )
 }
 
 /// The most notes of one kind written for a run's cases.
