@@ -839,6 +839,8 @@ def cor(
     Returns
     -------
     CorResult with NumPy arrays ``ts``, ``e``, ``separated``, ``nfev`` (one entry per speed).
+    A RuntimeWarning counts the separations whose e lies below ``atol``: the run's rounding
+    level, where such a separation may not be real (``cor_rigorous`` decides).
 
     Examples
     --------
@@ -865,7 +867,21 @@ def cor(
     d = _bwcl.cor(argv, v0_array=arr, v0_tokens=tokens, sets=sets, threads=_threads(threads),
                   progress=cb)
     _progress.finish(cb, len(d["e"]))
+    _warn_rounding_level(d, float(atol))
     return _sets.reshape(_cor_result(d), sets, nd is not None)
+
+
+def _warn_rounding_level(d: dict, atol: float) -> None:
+    """A RuntimeWarning where a separation's e lies below the run's absolute tolerance: V and F
+    are 0 to what the float run resolves there, and rounding may have met the condition (as
+    ``bwcl cor``'s note; the linear Maxwell law with c = 1/2 + 2⁻⁵³ "separates" at T ≈ 39 with
+    e ≈ 1e-14, its T_s ≈ 1.5e8)."""
+    e = np.asarray(d["e"], dtype=float)
+    low = int(np.count_nonzero(np.asarray(d["separated"], dtype=bool) & (np.abs(e) < atol)))
+    if low:
+        warnings.warn(f"{low} case(s) with e below atol = {atol!r}: the float run's separation "
+                      "lies at its rounding level there and may not be real (cor_rigorous "
+                      "proves or refutes it)", RuntimeWarning, stacklevel=4)
 
 
 def _cor_result(d: dict) -> CorResult:

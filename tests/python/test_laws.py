@@ -250,3 +250,17 @@ def test_classical_linear_maxwell_below_a_half_never_separates():
         assert "never separates" in r.reason and "never separates" in repr(r)
     s = bwcl.classical("linear-maxwell", c="0.6", rigorous=True)
     assert s.separated and 0 < s.e_lo <= s.e_hi < 1
+
+
+def test_cor_warns_where_e_is_below_atol():
+    """A float separation with e below the absolute tolerance lies at the run's rounding level
+    (linear Maxwell, c = 1/2 + 2⁻⁵³: T ≈ 39, e ≈ 1e-14; its T_s ≈ 1.5e8): a RuntimeWarning, as
+    the CLI's note; none where e is resolved."""
+    with pytest.warns(RuntimeWarning, match="below atol"):
+        r = bwcl.cor("linear-maxwell", nd={"c": "0.50000000000000011"})
+    assert r.separated.all() and abs(r.e[0]) < 1e-12
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bwcl.cor("linear-maxwell", nd={"c": "0.6"})
+        bwcl.cor("linear-maxwell", nd={"c": "0.4"})
