@@ -378,3 +378,45 @@ fn hertz_contact_ends_at_the_closed_form() {
         assert!((e - 1.0).abs() < 1e-8, "n = {n}: e {e}");
     }
 }
+
+/// A case not proved (Kelvin–Voigt ζ = 1000: F ≈ 0 on the slow manifold) leaves `--out` as it
+/// was, prints its reason on stdout (a CSV row with the reason in its last column) and says so
+/// on stderr, exit 1 — as `bwcl cor`.
+#[test]
+fn a_failed_case_keeps_out_and_stays_csv() {
+    let dir = std::env::temp_dir().join(format!("bwcl-classical-out-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("o.csv");
+    std::fs::write(&out, "old\n").unwrap();
+    let args = [
+        "classical",
+        "--law",
+        "kelvin-voigt",
+        "--zeta",
+        "1000",
+        "--rigorous",
+        "--format",
+        "csv",
+    ];
+    let mut with_out: Vec<&str> = args.to_vec();
+    let path = out.to_str().unwrap();
+    with_out.extend(["--out", path]);
+    let o = common::bwcl(&with_out);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(
+        err.contains("not proved") && err.contains("left unchanged"),
+        "{err}"
+    );
+    let text = String::from_utf8(o.stdout).unwrap();
+    let mut lines = text.lines();
+    let head = lines.next().unwrap();
+    assert!(head.ends_with(",separated,reason"), "{text}");
+    let row = lines.next().unwrap();
+    assert!(
+        row.starts_with("kelvin-voigt,zeta=1000,") && row.contains("\"not proved: "),
+        "{row}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -463,6 +463,25 @@ fn linear_maxwell_below_a_half_never_separates() {
     ]);
     let out = String::from_utf8(r.stdout).unwrap();
     assert!(!out.contains("never separates"), "{out}");
+    // c = 1/2 + 1e-20 as written: its double is 1/2, but the closed form is not claimed for it
+    let out = common::bwcl_ok(&[
+        "classical",
+        "--law",
+        "linear-maxwell",
+        "--c",
+        "0.50000000000000000001",
+    ]);
+    assert!(!out.contains("never separates"), "{out}");
+    // and a value below its law's range as written is refused though its double is in range
+    let o = bwcl(&[
+        "classical",
+        "--law",
+        "hertz",
+        "--n",
+        "0.99999999999999999999",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("must be ≥ 1"));
     // the float run of that law "separates" at T ≈ 39 with e ≈ 1e-14 from rounding: said so
     let o = bwcl(&[
         "cor",

@@ -122,12 +122,17 @@ fn run_rigorous<M: CollisionModel<Interval, N>, const N: usize>(m: &M) -> Result
     }
 }
 
-fn run_float<M: CollisionModel<f64, N>, const N: usize>(m: &M) -> Result2 {
+/// `never`: the closed form's argument for the law as written ([`CollisionModel::never_separates`]
+/// of its enclosure).
+fn run_float<M: CollisionModel<f64, N>, const N: usize>(
+    m: &M,
+    never: Option<&'static str>,
+) -> Result2 {
     let r = impact(m, &FloatOptions::default()).map_err(|e| e.to_string())?;
     let p = |x: f64| Interval::try_from((x, x)).unwrap();
     Ok(match r.ts {
         Some(ts) => Outcome::Separated(p(ts), p(r.e)),
-        None => Outcome::NoSeparation(r.horizon, m.never_separates().map(String::from)),
+        None => Outcome::NoSeparation(r.horizon, never.map(String::from)),
     })
 }
 
@@ -167,12 +172,16 @@ fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
         .map(|(k, v)| format!("--{k} '{}'", echo(v)))
         .collect();
     let bad = |m: String| CliError::Input(format!("{} {}: {m}", name(a.law), given.join(" ")));
+    // the law on intervals is built for the float run too: its values are checked as written
+    // (n = 0.99999999999999999999 is below 1 though its double is 1), and a closed form's
+    // claim is made for the value as written (c = 0.50000000000000000001 may separate)
     macro_rules! go {
         ($iv:expr, $fl:expr) => {{
+            let iv = $iv.map_err(bad)?;
             if a.rigorous {
-                Ok(run_rigorous(&$iv.map_err(bad)?))
+                Ok(run_rigorous(&iv))
             } else {
-                Ok(run_float(&$fl.map_err(bad)?))
+                Ok(run_float(&$fl.map_err(bad)?, iv.never_separates()))
             }
         }};
     }
@@ -262,10 +271,27 @@ fn csv_head(rigorous: bool) -> Vec<&'static str> {
 pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
     super::input::out_path(a.out.as_deref())?;
     let (bytes, code, note) = report_and_note(a)?;
-    output::emit(a.out.as_deref(), &bytes)?;
-    if let Some(n) = note {
-        super::note(&n);
+    if code == super::EXIT_OK {
+        output::emit(a.out.as_deref(), &bytes)?;
+        if let Some(n) = note {
+            super::note(&n);
+        }
+        return Ok(code);
     }
+    // as `bwcl cor`: --out is replaced only when the command succeeded; the reason goes to
+    // stdout, and one line on stderr says so
+    output::emit(None, &bytes)?;
+    let kept = match &a.out {
+        Some(p) => format!(
+            "; --out '{}' left unchanged, the output is on stdout",
+            echo(&p.to_string_lossy())
+        ),
+        None => String::new(),
+    };
+    super::note(&format!(
+        "bwcl: the case was not {} (the reason is in the output){kept}",
+        if a.rigorous { "proved" } else { "integrated" }
+    ));
     Ok(code)
 }
 
@@ -294,11 +320,22 @@ fn report_and_note(a: &ClassicalArgs) -> Result<(Vec<u8>, i32, Option<String>), 
         (Err(why), Format::Json) => {
             output::json(&json!({"law": law, "params": named, "error": why}))?
         }
-        (Err(why), _) => format!(
-            "{law}: not {}: {why}\n",
-            if a.rigorous { "proved" } else { "integrated" }
-        )
-        .into_bytes(),
+        (Err(why), f) => {
+            let text = format!(
+                "not {}: {why}",
+                if a.rigorous { "proved" } else { "integrated" }
+            );
+            if f == Format::Csv {
+                // the same columns as a result, the reason in the last
+                let head = csv_head(a.rigorous);
+                let mut row = vec![law.to_string(), pars_text(&pars)];
+                row.resize(head.len() - 1, String::new());
+                row.push(text);
+                output::csv(&head, [row])?
+            } else {
+                format!("{law}: {text}\n").into_bytes()
+            }
+        }
         (Ok(Outcome::NoSeparation(h, never)), f) => {
             // as `bwcl cor`: the horizon rounded down where the run proved T_s > H
             let text = if a.rigorous {
