@@ -525,3 +525,52 @@ fn linear_maxwell_below_a_half_never_separates() {
     assert_eq!(v["separated"], true);
     assert!(v["e"].as_f64().unwrap() > 0.0);
 }
+
+/// A law that never separates has a proved trajectory (to --t-end, or the horizon) with the
+/// separation condition left out (F > 0 by its closed form), noted on stderr; its force holds
+/// the closed form F = (e^(r₊T) − e^(r₋T))/(r₊ − r₋), r± = −β ± √(β² − 1) (c̃ = 0.3: β = 5/3,
+/// r₊ = −1/3, r₋ = −3) at 200 bits. It failed with "not proved: no separation before the
+/// horizon" (helper-21's audit).
+#[test]
+fn a_law_that_never_separates_has_a_proved_trajectory() {
+    let o = bwcl(&[
+        "trajectory",
+        "--model",
+        "linear-maxwell",
+        "--nd",
+        "c=0.3",
+        "--rigorous",
+        "--t-end",
+        "10",
+        "--points",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(
+        err.contains("the law never separates") && err.contains("T = 10"),
+        "{err}"
+    );
+    let out = String::from_utf8(o.stdout).unwrap();
+    let mut lines = out.lines();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows: Vec<std::collections::HashMap<String, String>> = lines
+        .map(|l| {
+            head.iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect();
+    assert_eq!(rows.len(), 3);
+    for row in &rows[1..] {
+        let t = fl(&row["t"]);
+        let third = Float::with_val(CLOSED_BITS, &t / 3u32);
+        let triple = Float::with_val(CLOSED_BITS, &t * 3u32);
+        let f = (Float::with_val(CLOSED_BITS, -third).exp()
+            - Float::with_val(CLOSED_BITS, -triple).exp())
+            * Float::with_val(CLOSED_BITS, 3)
+            / 8u32;
+        holds(row, "F", &Float::with_val(CLOSED_BITS, f), 1e-11);
+    }
+}

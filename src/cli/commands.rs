@@ -534,6 +534,13 @@ pub fn settle_rigorous(
         Err(err) if err.no_separation() => {
             row.proved = true;
             row.reason = Some(no_separation_text(row.horizon, err.never_separates()));
+            if err.never_separates().is_some() {
+                // T_s = +∞ for every T by the closed form: e = 0 by the paper's convention, as
+                // the float run and `classical` report it
+                let zero = Interval::try_from((0.0, 0.0)).unwrap();
+                row.e = Some(bounds(zero));
+                row.width_e = Some(width(zero));
+            }
         }
         Err(err) => row.reason = Some(input::limit_text(&err, time_limit)),
     }
@@ -678,19 +685,15 @@ pub fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     what: Curve,
     time_limit: Option<f64>,
 ) -> Result<Csv, CliError> {
-    let enc = rigorous_impact(model, opts)
-        .map_err(|e| CliError::Failed(input::limit_text(&e, time_limit)))?;
-    let flow_end = enc.flow.t_end();
-    let end = match t_end {
-        Some(t) if t > flow_end => {
-            return Err(CliError::Failed(format!(
-                "--t-end {t} lies beyond the proved flow, which ends at T = {flow_end}"
-            )));
-        }
-        Some(t) => t,
-        // up to T_s (its upper bound), as the float curves; the flow reaches a little past it
-        None => enc.ts.sup().min(flow_end),
-    };
+    // up to T_s (its upper bound), as the float curves; the flow reaches a little past it (to
+    // the horizon, or --t-end, for a law that never separates)
+    use bwcl::observables::rigorous::{CurveError, curve_flow};
+    let (flow, end, never) = curve_flow(model, opts, t_end).map_err(|e| {
+        CliError::Failed(match e {
+            CurveError::Engine(e) => input::limit_text(&e, time_limit),
+            CurveError::Other(m) => m,
+        })
+    })?;
     let names: Vec<&str> = match what {
         Curve::Trajectory => M::STATE_NAMES
             .iter()
@@ -709,7 +712,7 @@ pub fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     }
     let mut rows = Vec::with_capacity(points);
     for t in bwcl::observables::trajectory::sample_times(end, points) {
-        let s = enc.flow.enclose(t).ok_or_else(|| {
+        let s = flow.enclose(t).ok_or_else(|| {
             CliError::Failed(format!("the proved flow has no enclosure at T = {t}"))
         })?;
         let (x, v, f) = (model.position(&s), model.velocity(&s), model.force(&s));
@@ -726,5 +729,11 @@ pub fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
         }
         rows.push(r);
     }
-    Ok((head, rows, None))
+    let remark = never.then(|| {
+        format!(
+            "bwcl: note: the law never separates (its closed form); the samples end at T = {}",
+            num(end)
+        )
+    });
+    Ok((head, rows, remark))
 }

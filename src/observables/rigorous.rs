@@ -1,6 +1,10 @@
 //! Proved enclosures of T_s and e from the rigorous Taylor engine ([`crate::engines::taylor`]).
 
-use crate::engines::taylor::{Flow, RigorError, TaylorOptions, integrate_to_separation};
+use crate::arith::{Real, Scalar};
+use crate::engines::taylor::tape::Tape;
+use crate::engines::taylor::{
+    Ended, Flow, RigorError, TaylorOptions, integrate_system_until, integrate_to_separation,
+};
 use crate::models::CollisionModel;
 use crate::models::{ModelKind, NdParams};
 use inari::Interval;
@@ -30,6 +34,75 @@ pub fn rigorous_impact<M: CollisionModel<Interval, N>, const N: usize>(
         state: ev.state,
         flow,
     })
+}
+
+/// The proved flow a curve (`trajectory`, `loop`) is sampled on, the time its samples end at,
+/// and whether the model never separates: T_s's upper end (or `t_end`) when the model
+/// separates; for a model that never separates by its closed form
+/// ([`CollisionModel::never_separates`]), up to `t_end` (beyond the horizon too) or the horizon, run
+/// with F replaced by 1 in the separation condition (F > 0 for every T > 0 by the closed form:
+/// the condition the engine would otherwise test, F's sign at the rounding level, stops the run
+/// as undecidable). `t_end` beyond the proved flow is refused.
+pub fn curve_flow<M: CollisionModel<Interval, N> + Sync, const N: usize>(
+    model: &M,
+    opts: &TaylorOptions,
+    t_end: Option<f64>,
+) -> Result<(Flow<N>, f64, bool), CurveError> {
+    let (flow, end, never) = match rigorous_impact(model, opts) {
+        Ok(enc) => {
+            let end = enc.ts.sup().min(enc.flow.t_end());
+            (enc.flow, t_end.unwrap_or(end), false)
+        }
+        Err(e) if e.never_separates().is_some() => {
+            let end = t_end.unwrap_or(opts.horizon);
+            let tape = Tape::<Interval, N>::record(|v| {
+                let mut o = model.field(v).to_vec();
+                o.push(v[0].scale(&Interval::zero()).shift(&Interval::one()));
+                o.push(model.velocity(v));
+                o
+            });
+            // past `end`, so that the run stops by the test rather than at its horizon
+            let past = TaylorOptions {
+                horizon: 2.0 * end + 1.0,
+                ..opts.clone()
+            };
+            let mut stop = |f: &Flow<N>, _: f64| f.t_end() >= end;
+            match integrate_system_until(&tape, model.initial_state(), N, &past, &mut stop) {
+                Ok(Ended::Stopped { flow, .. }) => (flow, end, true),
+                Ok(Ended::Separated(..)) => {
+                    return Err(CurveError::Other(
+                        "the flow without the separation condition separated (an internal error)"
+                            .into(),
+                    ));
+                }
+                Err(e) => return Err(CurveError::Engine(e)),
+            }
+        }
+        Err(e) => return Err(CurveError::Engine(e)),
+    };
+    if end > flow.t_end() {
+        return Err(CurveError::Other(format!(
+            "--t-end {end} lies beyond the proved flow, which ends at T = {}",
+            flow.t_end()
+        )));
+    }
+    Ok((flow, end, never))
+}
+
+/// Why [`curve_flow`] has no flow: the engine's reason, or another.
+#[derive(Clone, Debug)]
+pub enum CurveError {
+    Engine(RigorError),
+    Other(String),
+}
+
+impl std::fmt::Display for CurveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CurveError::Engine(e) => write!(f, "{e}"),
+            CurveError::Other(m) => write!(f, "{m}"),
+        }
+    }
 }
 
 /// Proved T_s and e for every impact speed in a range (all in the hulls).

@@ -14,7 +14,6 @@ use bwcl::models::hunt_crossley::HuntCrossley;
 use bwcl::models::linear_maxwell::LinearMaxwell;
 use bwcl::models::scaling::Scales;
 use bwcl::models::{CollisionModel, Maxwell, ModelKind, Shc};
-use bwcl::observables::rigorous::rigorous_impact;
 use bwcl::observables::trajectory::{Sample, Units, trajectory as samples};
 use bwcl::observables::{FloatOptions, impact};
 use inari::Interval;
@@ -61,22 +60,12 @@ fn rigorous_curve<M: CollisionModel<Interval, N>, const N: usize>(
     t_end: Option<f64>,
     points: usize,
 ) -> Result<RigorousCurve, String> {
-    let enc = rigorous_impact(model, opts).map_err(|e| e.to_string())?;
-    let flow_end = enc.flow.t_end();
-    let end = match t_end {
-        Some(t) if t > flow_end => {
-            return Err(format!(
-                "--t-end {t} lies beyond the proved flow, which ends at T = {flow_end}"
-            ));
-        }
-        Some(t) => t,
-        None => enc.ts.sup().min(flow_end),
-    };
+    let (flow, end, _) =
+        bwcl::observables::rigorous::curve_flow(model, opts, t_end).map_err(|e| e.to_string())?;
     let mut ts = Vec::with_capacity(points);
     let mut cols = Vec::with_capacity(points);
     for t in bwcl::observables::trajectory::sample_times(end, points) {
-        let s = enc
-            .flow
+        let s = flow
             .enclose(t)
             .ok_or_else(|| format!("the proved flow has no enclosure at T = {t}"))?;
         let (x, v, f) = (model.position(&s), model.velocity(&s), model.force(&s));

@@ -264,3 +264,13 @@ def test_cor_warns_where_e_is_below_atol():
         warnings.simplefilter("error")
         bwcl.cor("linear-maxwell", nd={"c": "0.6"})
         bwcl.cor("linear-maxwell", nd={"c": "0.4"})
+
+
+def test_a_law_that_never_separates_in_cor_rigorous_and_trajectory():
+    """c ≤ 1/2: cor_rigorous proves no separation with e = 0 (the paper's convention for
+    T_s = +∞, as cor and classical); the proved trajectory runs to t_end."""
+    r = bwcl.cor_rigorous("linear-maxwell", nd={"c": "0.4"})
+    assert r.proved.all() and not r.separated.any()
+    assert (r.e == 0).all()
+    t = bwcl.trajectory("linear-maxwell", nd={"c": "0.3"}, rigorous=True, t_end=10, points=3)
+    assert len(t.t) == 3 and t.t[-1] == 10
