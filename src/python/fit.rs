@@ -112,7 +112,14 @@ pub fn fit<'py>(
         return Err(PyValueError::new_err("not a fit command"));
     };
     let a: FitArgs = a;
-    let kind = super::cli::fit::bouc_wen(a.model).map_err(py_error)?;
+    let Some(kind) = a.model.kind() else {
+        // (the CLI's message names its own commands; `pythonic` garbled them)
+        return Err(PyValueError::new_err(format!(
+            "model {}: bwcl.fit fits the Bouc–Wen models; a classical law is fitted by \
+             bwcl.compare(data, models=\"{0}\") (or `bwcl fit --model {0}` on the command line)",
+            a.model.key()
+        )));
+    };
     let data = data_of(&a.data, v0, e)?;
     let mut opts = fit_options(&a).map_err(py_error)?;
     opts.weights = Some(search_weights(&data, &a.search).map_err(py_error)?);

@@ -274,3 +274,10 @@ def test_a_law_that_never_separates_in_cor_rigorous_and_trajectory():
     assert (r.e == 0).all()
     t = bwcl.trajectory("linear-maxwell", nd={"c": "0.3"}, rigorous=True, t_end=10, points=3)
     assert len(t.t) == 3 and t.t[-1] == 10
+
+
+def test_fit_of_a_classical_law_points_to_compare():
+    """bwcl.fit fits the Bouc–Wen models; for a law it names bwcl.compare (the CLI's message,
+    rewritten for Python, read `bwcl fit model kelvin-voigt`)."""
+    with pytest.raises(ValueError, match=r'bwcl\.compare\(data, models="kelvin-voigt"\)'):
+        bwcl.fit("kelvin-voigt", v0=[1.0, 2.0, 3.0], e=[0.5, 0.5, 0.5])
