@@ -574,3 +574,60 @@ fn a_law_that_never_separates_has_a_proved_trajectory() {
         holds(row, "F", &Float::with_val(CLOSED_BITS, f), 1e-11);
     }
 }
+
+/// The scales of a law's physical parameters are formed without m·v0² or m/k, which may lie
+/// beyond the doubles while L and T_c do not (helper-21's audit: "the time scale at v0 = 1e300
+/// is inf" for m = k = 1e300, whose T_c is 1 s); a scale beyond the doubles is named as such.
+#[test]
+fn physical_scales_far_apart_are_formed_or_named() {
+    // m = 1e-300 kg, k = 1e300 N/m: T_c = √(m/k) = 1e-300 s (m/k = 1e-600 underflowed)
+    for rigorous in [false, true] {
+        let mut args = vec![
+            "cor",
+            "--model",
+            "kelvin-voigt",
+            "--physical",
+            "m=1e-300,k=1e300,c=1",
+            "--v0",
+            "1",
+            "--format",
+            "json",
+        ];
+        if rigorous {
+            args.push("--rigorous");
+        }
+        let v: serde_json::Value = serde_json::from_str(&common::bwcl_ok(&args)).unwrap();
+        let ts_s = &v[0]["ts_seconds"];
+        let lo = if rigorous {
+            ts_s[0].as_f64()
+        } else {
+            ts_s.as_f64()
+        }
+        .unwrap();
+        let ts = if rigorous {
+            v[0]["ts"][0].as_f64()
+        } else {
+            v[0]["ts"].as_f64()
+        }
+        .unwrap();
+        assert!((lo / ts / 1e-300 - 1.0).abs() < 1e-12, "{v}");
+    }
+    // m = k = 1e300, v0 = 1e300 m/s: T_c = 1 s, but F_c = m v0/T_c = 1e600 N is beyond them
+    let o = bwcl(&[
+        "cor",
+        "--model",
+        "kelvin-voigt",
+        "--physical",
+        "m=1e300,k=1e300,c=1e300",
+        "--v0",
+        "1e300",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(
+        err.contains(
+            "the force F_c scale at v0 = 1e300 is inf: beyond the range of the arithmetic"
+        ),
+        "{err}"
+    );
+}

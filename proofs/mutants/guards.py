@@ -71,7 +71,7 @@ GUARDS = [
      "Kelvin–Voigt ζ = c/(2√(mk)): the factor 2 dropped",
      ["--test", "law_cor", "closed_forms"]),
     ("law-time-scale", "src/models/classical.rs",
-     [(".pow(&(one.clone() / (self.n.clone() + one)));", ".pow(&(one.clone() / self.n.clone()));")],
+     [("        let q = one.clone() / (self.n.clone() + one);", "        let q = one.clone() / self.n.clone();")],
      "the length scale L = (m v0²/k)^(1/(n+1)) (the time scale T_c = L/v0 with it)",
      ["--test", "law_cor", "closed_forms"]),
     ("law-params-outward", "src/cli/output.rs",

@@ -177,11 +177,17 @@ fn compute(a: &ClassicalArgs) -> Result<Result2, CliError> {
     // claim is made for the value as written (c = 0.50000000000000000001 may separate)
     macro_rules! go {
         ($iv:expr, $fl:expr) => {{
-            let iv = $iv.map_err(bad)?;
-            if a.rigorous {
-                Ok(run_rigorous(&iv))
+            // the float law first: its reading of a value names the double it becomes
+            // ("below the smallest positive double")
+            let fl = if a.rigorous {
+                None
             } else {
-                Ok(run_float(&$fl.map_err(bad)?, iv.never_separates()))
+                Some($fl.map_err(bad)?)
+            };
+            let iv = $iv.map_err(bad)?;
+            match fl {
+                None => Ok(run_rigorous(&iv)),
+                Some(fl) => Ok(run_float(&fl, iv.never_separates())),
             }
         }};
     }

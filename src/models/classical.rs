@@ -248,17 +248,23 @@ impl<R: Real> LawParams<R> {
             return Ok(None);
         }
         let one = R::one();
-        let l = (self.m.clone() * v0.clone() * v0.clone() / self.k.clone())
-            .pow(&(one.clone() / (self.n.clone() + one)));
+        // L = (m v0²/k)^(1/(n+1)) as (m^q/k^q)·v0^(2q), q = 1/(n+1), F_c = m v0/T_c: neither
+        // m·v0² nor m/k is formed, which may lie beyond the doubles while L does not (m = k =
+        // v0 = 1e300: L = 1e300 m, T_c = 1 s; m = 1e-300, k = 1e300: L = 1e-300 m)
+        let q = one.clone() / (self.n.clone() + one);
+        let l = self.m.pow(&q) / self.k.pow(&q) * v0.pow(&(q.clone() + q.clone()));
         let t_c = l.clone() / v0.clone();
-        if !(t_c.is_finite() && t_c.lo() > 0.0) {
-            return Err(ParamError(format!(
-                "the time scale at v0 = {} is {}, not a finite positive number",
-                show(v0),
-                show(&t_c)
-            )));
-        }
         let f_c = self.m.clone() * v0.clone() / t_c.clone();
+        for (name, x) in [("length L", &l), ("time T_c", &t_c), ("force F_c", &f_c)] {
+            if !(x.is_finite() && x.lo() > 0.0) {
+                return Err(ParamError(format!(
+                    "the {name} scale at v0 = {} is {}: beyond the range of the arithmetic (an \
+                     overflow or underflow: the physical values' scales are too far apart)",
+                    show(v0),
+                    show(x)
+                )));
+            }
+        }
         Ok(Some(Scales {
             t_c,
             x_c: l.clone(),
