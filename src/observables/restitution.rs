@@ -330,8 +330,18 @@ pub fn target_grid(lo: &str, hi: &str, points: usize) -> Result<Vec<String>, Str
                 return hi.to_string();
             }
             let x = Rational::from(&b - &a) * Rational::from(i) / Rational::from(points - 1) + &a;
+            // the grid point rounded to 4 decimals, written exactly (k/10⁴ through a double
+            // read 0.44999999999999996 for 0.45)
             let k = (x * Rational::from(10_000)).round().numer().clone();
-            format!("{}", Rational::from((k, 10_000)).to_f64())
+            let (q, r) = k.clone().abs().div_rem(rug::Integer::from(10_000));
+            let sign = if k < 0 { "-" } else { "" };
+            let frac = format!("{r:04}");
+            let frac = frac.trim_end_matches('0');
+            if frac.is_empty() {
+                format!("{sign}{q}")
+            } else {
+                format!("{sign}{q}.{frac}")
+            }
         })
         .collect())
 }
@@ -397,6 +407,17 @@ pub fn study(
 
 #[cfg(test)]
 mod tests {
+    /// The grid's inner points are the 4-decimal values themselves (helper-21's audit: through
+    /// a double they read 0.44999999999999996 and 0.13329999999999997).
+    #[test]
+    fn grid_targets_are_written_exactly() {
+        let g = super::target_grid("0.05", "0.95", 7).unwrap();
+        assert_eq!(g, ["0.05", "0.2", "0.35", "0.5", "0.65", "0.8", "0.95"]);
+        let g = super::target_grid("0.1", "0.9", 7).unwrap();
+        assert_eq!(g[1], "0.2333");
+        assert_eq!(super::target_grid("0", "1", 3).unwrap(), ["0", "0.5", "1"]);
+    }
+
     use super::*;
 
     fn dec(s: &str) -> Big {
