@@ -915,7 +915,8 @@ pub struct CorArgs {
     /// Also the derived outputs of each collision: the peak contact force F_max, the maximum
     /// indentation δ_max (max of −X) over [0, T_s], and the kinetic energy lost
     /// ΔE = (1 − e²)/2 — in SI too with --physical (N, m, J = ½ m v0² (1 − e²)). Proved with
-    /// --rigorous (point cases; a range is refused), on the dense output otherwise.
+    /// --rigorous (not computed over a range of a Bouc–Wen model's inputs, the row says why; a
+    /// classical law's range is proved whole), on the dense output otherwise.
     #[arg(long)]
     pub derived: bool,
     /// With --rigorous: a case the f64-interval engine cannot decide (grazing or undecidable
