@@ -287,13 +287,7 @@ pub fn classical(a: &ClassicalArgs) -> Result<i32, CliError> {
     // as `bwcl cor`: --out is replaced only when the command succeeded; the reason goes to
     // stdout, and one line on stderr says so
     output::emit(None, &bytes)?;
-    let kept = match &a.out {
-        Some(p) => format!(
-            "; --out '{}' left unchanged, the output is on stdout",
-            echo(&p.to_string_lossy())
-        ),
-        None => String::new(),
-    };
+    let kept = output::out_kept(a.out.as_deref());
     super::note(&format!(
         "bwcl: the case was not {} (the reason is in the output){kept}",
         if a.rigorous { "proved" } else { "integrated" }
@@ -373,13 +367,20 @@ fn report_and_note(a: &ClassicalArgs) -> Result<(Vec<u8>, i32, Option<String>), 
                     "reason": text,
                 }))?,
                 Format::Csv => {
-                    let mut row = vec![law.to_string(), pars_text(&pars)];
-                    row.resize(if a.rigorous { 8 } else { 4 }, String::new());
-                    if !a.rigorous {
-                        row[3] = "0".into();
-                    }
-                    row.extend(["false".to_string(), text]);
-                    output::csv(&csv_head(a.rigorous), [row])?
+                    // the value columns empty, but the float run's e = 0
+                    let head = csv_head(a.rigorous);
+                    let mut row: Vec<String> = head
+                        .iter()
+                        .map(|&h| match h {
+                            "e" => "0".into(),
+                            "separated" => "false".into(),
+                            _ => String::new(),
+                        })
+                        .collect();
+                    row[0] = law.to_string();
+                    row[1] = pars_text(&pars);
+                    *row.last_mut().expect("a reason column") = text;
+                    output::csv(&head, [row])?
                 }
                 _ => format!("{law} {}: {text}\n", pars_text(&pars)).into_bytes(),
             }

@@ -178,13 +178,7 @@ fn cor(a: &CorArgs) -> Result<i32, CliError> {
     } else {
         "not integrated"
     };
-    let kept = match &a.out {
-        Some(p) => format!(
-            "; --out '{}' left unchanged, the output is on stdout",
-            bwcl::fit::data::echo(&p.to_string_lossy())
-        ),
-        None => String::new(),
-    };
+    let kept = output::out_kept(a.out.as_deref());
     note(&format!(
         "bwcl: {failed} of {total} case(s) {what} (the reason is in the output){kept}"
     ));
@@ -533,8 +527,9 @@ pub fn settle_rigorous(
         // the condition proved to fail on [0, horizon]: T_s > horizon, a result
         Err(err) if err.no_separation() => {
             row.proved = true;
-            row.reason = Some(no_separation_text(row.horizon, err.never_separates()));
-            if err.never_separates().is_some() {
+            let never = err.never_separates();
+            row.reason = Some(no_separation_text(row.horizon, never));
+            if never.is_some() {
                 // T_s = +∞ for every T by the closed form: e = 0 by the paper's convention, as
                 // the float run and `classical` report it
                 let zero = Interval::try_from((0.0, 0.0)).unwrap();

@@ -436,6 +436,18 @@ pub fn outward_pair(i: Interval) -> [String; 2] {
     ends_text(i.inf(), i.sup(), false)
 }
 
+/// The tail of a failure's stderr line when `--out` was given: the file is left as it was and
+/// the output (with the reasons) went to stdout; empty without `--out`.
+pub fn out_kept(out: Option<&std::path::Path>) -> String {
+    match out {
+        Some(p) => format!(
+            "; --out '{}' left unchanged, the output is on stdout",
+            bwcl::fit::data::echo(&p.to_string_lossy())
+        ),
+        None => String::new(),
+    }
+}
+
 /// A double in the shortest form that reads back exactly: plain for ordinary magnitudes,
 /// exponent form for very small or large ones.
 pub fn num(x: f64) -> String {

@@ -89,8 +89,7 @@ impl<R: Real> CollisionModel<R, 3> for LinearMaxwell<R> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engines::taylor::tape::Tape;
-    use crate::engines::taylor::{TaylorOptions, integrate_system};
+    use crate::engines::taylor::{TaylorOptions, integrate_system, model_tape};
     use inari::{Interval, interval};
 
     /// The closed form is claimed for an enclosure only when every value of c̃ is ≤ 1/2 (the
@@ -110,20 +109,15 @@ mod tests {
         assert!(!i(0.4, 0.6) && !i(0.5, 0.5f64.next_up()));
     }
 
-    /// The engine's own verdict on [0, 15] without the closed form (the system recorded as the
-    /// engine records a model, but run through `integrate_system`, which does not ask the
+    /// The engine's own verdict on [0, 15] without the closed form (the system the engine runs
+    /// for the model, `model_tape`, but run through `integrate_system`, which does not ask the
     /// model): the condition proved to fail for c̃ ≤ 1/2 — and, as a negative control, the
     /// separation at T_s = π/ω found for c̃ = 0.55 (β = 1/1.1, ω = √(1 − β²)).
     #[test]
     fn the_engine_agrees_with_the_closed_form_where_it_can_tell() {
         let run = |c: &str| {
             let m = LinearMaxwell::new(Interval::parse_decimal(c).unwrap()).unwrap();
-            let tape = Tape::<Interval, 3>::record(|v| {
-                let mut o = m.field(v).to_vec();
-                o.push(m.force(v));
-                o.push(m.velocity(v));
-                o
-            });
+            let tape = model_tape(&m, true);
             let opts = TaylorOptions {
                 horizon: 15.0,
                 ..TaylorOptions::default()

@@ -407,18 +407,18 @@ pub fn study(
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     /// The grid's inner points are the 4-decimal values themselves (helper-21's audit: through
     /// a double they read 0.44999999999999996 and 0.13329999999999997).
     #[test]
     fn grid_targets_are_written_exactly() {
-        let g = super::target_grid("0.05", "0.95", 7).unwrap();
+        let g = target_grid("0.05", "0.95", 7).unwrap();
         assert_eq!(g, ["0.05", "0.2", "0.35", "0.5", "0.65", "0.8", "0.95"]);
-        let g = super::target_grid("0.1", "0.9", 7).unwrap();
+        let g = target_grid("0.1", "0.9", 7).unwrap();
         assert_eq!(g[1], "0.2333");
-        assert_eq!(super::target_grid("0", "1", 3).unwrap(), ["0", "0.5", "1"]);
+        assert_eq!(target_grid("0", "1", 3).unwrap(), ["0", "0.5", "1"]);
     }
-
-    use super::*;
 
     fn dec(s: &str) -> Big {
         Big::parse_decimal(s).unwrap()

@@ -1,9 +1,8 @@
 //! Proved enclosures of T_s and e from the rigorous Taylor engine ([`crate::engines::taylor`]).
 
-use crate::arith::{Real, Scalar};
-use crate::engines::taylor::tape::Tape;
 use crate::engines::taylor::{
     Ended, Flow, RigorError, TaylorOptions, integrate_system_until, integrate_to_separation,
+    model_tape,
 };
 use crate::models::CollisionModel;
 use crate::models::{ModelKind, NdParams};
@@ -48,37 +47,30 @@ pub fn curve_flow<M: CollisionModel<Interval, N> + Sync, const N: usize>(
     opts: &TaylorOptions,
     t_end: Option<f64>,
 ) -> Result<(Flow<N>, f64, bool), CurveError> {
-    let (flow, end, never) = match rigorous_impact(model, opts) {
-        Ok(enc) => {
-            let end = enc.ts.sup().min(enc.flow.t_end());
-            (enc.flow, t_end.unwrap_or(end), false)
-        }
-        Err(e) if e.never_separates().is_some() => {
-            let end = t_end.unwrap_or(opts.horizon);
-            let tape = Tape::<Interval, N>::record(|v| {
-                let mut o = model.field(v).to_vec();
-                o.push(v[0].scale(&Interval::zero()).shift(&Interval::one()));
-                o.push(model.velocity(v));
-                o
-            });
-            // past `end`, so that the run stops by the test rather than at its horizon
-            let past = TaylorOptions {
-                horizon: 2.0 * end + 1.0,
-                ..opts.clone()
-            };
-            let mut stop = |f: &Flow<N>, _: f64| f.t_end() >= end;
-            match integrate_system_until(&tape, model.initial_state(), N, &past, &mut stop) {
-                Ok(Ended::Stopped { flow, .. }) => (flow, end, true),
-                Ok(Ended::Separated(..)) => {
-                    return Err(CurveError::Other(
-                        "the flow without the separation condition separated (an internal error)"
-                            .into(),
-                    ));
-                }
-                Err(e) => return Err(CurveError::Engine(e)),
+    let never = model.never_separates().is_some();
+    let (flow, end) = if never {
+        let end = t_end.unwrap_or(opts.horizon);
+        // past `end`, so that the run stops by the test rather than at its horizon
+        let past = TaylorOptions {
+            horizon: 2.0 * end + 1.0,
+            ..opts.clone()
+        };
+        let mut stop = |f: &Flow<N>, _: f64| f.t_end() >= end;
+        let tape = model_tape(model, false);
+        match integrate_system_until(&tape, model.initial_state(), N, &past, &mut stop) {
+            Ok(Ended::Stopped { flow, .. }) => (flow, end),
+            Ok(Ended::Separated(..)) => {
+                return Err(CurveError::Other(
+                    "the flow without the separation condition separated (an internal error)"
+                        .into(),
+                ));
             }
+            Err(e) => return Err(CurveError::Engine(e)),
         }
-        Err(e) => return Err(CurveError::Engine(e)),
+    } else {
+        let enc = rigorous_impact(model, opts).map_err(CurveError::Engine)?;
+        let end = enc.ts.sup().min(enc.flow.t_end());
+        (enc.flow, t_end.unwrap_or(end))
     };
     if end > flow.t_end() {
         return Err(CurveError::Other(format!(

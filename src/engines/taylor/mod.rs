@@ -47,7 +47,7 @@ pub use options::{
     SWITCH_ON_AN_EXPRESSION, TaylorOptions, UNDECIDABLE,
 };
 
-use crate::arith::Enclosure;
+use crate::arith::{Enclosure, Scalar};
 use crate::models::CollisionModel;
 use integrate::{integrate_tape, integrate_tape_until};
 use tape::Tape;
@@ -90,13 +90,28 @@ fn integrate<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
             width: 0.0,
         });
     }
-    let tape = Tape::<I, N>::record(|v| {
+    integrate_tape(&model_tape(model, true), model.initial_state(), N, opts)
+}
+
+/// The system the engine runs for a model: the field's N components, then the outputs F (N) and
+/// V (N + 1) of the separation condition. Without `condition`, F is recorded as the constant 1:
+/// for a model that never separates by its closed form
+/// ([`CollisionModel::never_separates`]: F > 0 for every T > 0), whose flow is wanted past the
+/// point where F's sign is at the rounding level.
+pub fn model_tape<I: Enclosure, M: CollisionModel<I, N>, const N: usize>(
+    model: &M,
+    condition: bool,
+) -> Tape<I, N> {
+    Tape::<I, N>::record(|v| {
         let mut o = model.field(v).to_vec();
-        o.push(model.force(v));
+        o.push(if condition {
+            model.force(v)
+        } else {
+            v[0].scale(&I::zero()).shift(&I::one())
+        });
         o.push(model.velocity(v));
         o
-    });
-    integrate_tape(&tape, model.initial_state(), N, opts)
+    })
 }
 
 /// [`integrate_to_separation`] of a recorded system: the field's N components, then the
